@@ -1,0 +1,93 @@
+#include "physics/character.h"
+
+#include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <cassert>
+
+#include "physics/convert.h"
+
+namespace gaitlab::physics {
+
+namespace {
+
+// Index (0, 1, 2) of the character-frame axis a DOF turns about; the morphologies use
+// axis-aligned DOFs only, which is what the 6-DOF constraint's limits are expressed in.
+int axisIndex(const Eigen::Vector3d& axis) {
+  int i;
+  axis.cwiseAbs().maxCoeff(&i);
+  return i;
+}
+
+}  // namespace
+
+Character::Character(World& world, const body::Morphology& morphology,
+                     const Eigen::Vector3d& origin, double heading)
+    : world_(world), morphology_(morphology) {
+  const Eigen::Quaterniond yaw(Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()));
+  const auto place = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return origin + yaw * p; };
+
+  bodies_.reserve(morphology.segments.size());
+  for (const body::Segment& s : morphology.segments) {
+    // Feet get more friction than the rest: they are what the controller pushes with.
+    const bool isFoot = s.name.size() > 5 && s.name.compare(s.name.size() - 5, 5, ".foot") == 0;
+    bodies_.push_back(world.addBox(s.halfExtents, s.mass, place(s.center), yaw, kCharacterGroup,
+                                   kCharacterMask, isFoot ? 1.0 : 0.6));
+  }
+
+  for (size_t i = 0; i < morphology.segments.size(); ++i) {
+    const body::Segment& s = morphology.segments[i];
+    if (s.parent < 0) continue;
+    btRigidBody* parent = bodies_[s.parent];
+    btRigidBody* child = bodies_[i];
+    const body::Joint& j = s.joint;
+    // The joint frame at rest: at the pivot, axes of the character frame.
+    btTransform jointFrame(toBt(yaw), toBt(place(j.pivot)));
+    btTypedConstraint* c = nullptr;
+    if (j.type == body::JointType::Hinge) {
+      // btHingeConstraint turns about its frames' z axis: rotate z onto the DOF axis.
+      const Eigen::Quaterniond zToAxis = Eigen::Quaterniond::FromTwoVectors(
+          Eigen::Vector3d::UnitZ(), j.axes[0]);
+      btTransform hingeFrame(toBt(yaw * zToAxis), toBt(place(j.pivot)));
+      auto* h = new btHingeConstraint(*parent, *child,
+                                      parent->getWorldTransform().inverse() * hingeFrame,
+                                      child->getWorldTransform().inverse() * hingeFrame, false);
+      h->setLimit(static_cast<btScalar>(j.lower[0]), static_cast<btScalar>(j.upper[0]));
+      c = h;
+    } else {
+      auto* g = new btGeneric6DofSpring2Constraint(
+          *parent, *child, parent->getWorldTransform().inverse() * jointFrame,
+          child->getWorldTransform().inverse() * jointFrame, RO_XYZ);
+      g->setLinearLowerLimit(btVector3(0, 0, 0));
+      g->setLinearUpperLimit(btVector3(0, 0, 0));
+      btVector3 lo(0, 0, 0), hi(0, 0, 0);  // DOFs the joint lacks stay locked
+      for (int d = 0; d < body::dofCount(j.type); ++d) {
+        const int a = axisIndex(j.axes[d]);
+        lo[a] = static_cast<btScalar>(j.lower[d]);
+        hi[a] = static_cast<btScalar>(j.upper[d]);
+      }
+      g->setAngularLowerLimit(lo);
+      g->setAngularUpperLimit(hi);
+      c = g;
+    }
+    world.dynamics().addConstraint(c, true);  // no collision between jointed segments
+    joints_.push_back(c);
+  }
+}
+
+Character::~Character() {
+  for (btTypedConstraint* c : joints_) {
+    world_.dynamics().removeConstraint(c);
+    delete c;
+  }
+  for (btRigidBody* b : bodies_) world_.removeBody(b);
+}
+
+SegmentState Character::segmentState(int segment) const {
+  const btRigidBody* b = bodies_[segment];
+  const btTransform& t = b->getCenterOfMassTransform();
+  return {toEigen(t.getOrigin()), toEigen(t.getRotation()), toEigen(b->getLinearVelocity()),
+          toEigen(b->getAngularVelocity())};
+}
+
+}  // namespace gaitlab::physics

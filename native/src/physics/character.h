@@ -1,0 +1,46 @@
+// An articulated character in a physics::World, built from a body::Morphology: one box rigid
+// body per segment, one constraint per joint (btHingeConstraint for 1 DOF, a
+// btGeneric6DofSpring2Constraint with locked translation for 2 and 3 DOF).
+#pragma once
+#include <Eigen/Dense>
+#include <vector>
+
+#include "body/morphology.h"
+#include "physics/world.h"
+
+class btRigidBody;
+class btTypedConstraint;
+
+namespace gaitlab::physics {
+
+// World-frame state of one segment, as the controller reads it.
+struct SegmentState {
+  Eigen::Vector3d position;  // centre of mass
+  Eigen::Quaterniond orientation;
+  Eigen::Vector3d linearVelocity;   // m/s
+  Eigen::Vector3d angularVelocity;  // rad/s
+};
+
+class Character {
+ public:
+  // Places the rest pose with its feet on the ground at (x, groundY, z), turned by `heading`.
+  Character(World& world, const body::Morphology& morphology, const Eigen::Vector3d& origin,
+            double heading);
+  ~Character();
+  Character(const Character&) = delete;
+  Character& operator=(const Character&) = delete;
+
+  const body::Morphology& morphology() const { return morphology_; }
+  int segmentCount() const { return static_cast<int>(bodies_.size()); }
+  btRigidBody* body(int segment) const { return bodies_[segment]; }
+
+  SegmentState segmentState(int segment) const;
+
+ private:
+  World& world_;
+  const body::Morphology& morphology_;
+  std::vector<btRigidBody*> bodies_;
+  std::vector<btTypedConstraint*> joints_;
+};
+
+}  // namespace gaitlab::physics

@@ -1,0 +1,89 @@
+#include "physics/world.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+
+#include "physics/convert.h"
+
+namespace gaitlab::physics {
+
+World::World()
+    : config_(std::make_unique<btDefaultCollisionConfiguration>()),
+      dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
+      broadphase_(std::make_unique<btDbvtBroadphase>()),
+      solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
+      dynamics_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
+                                                          solver_.get(), config_.get())) {
+  dynamics_->setGravity(btVector3(0, -9.81f, 0));
+  // Ground: a static plane at y = 0 (slopes and bumps come with the terrain option).
+  shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0));
+  btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
+  info.m_friction = 1.0f;
+  auto* ground = new btRigidBody(info);
+  dynamics_->addRigidBody(ground, kGroundGroup, kGroundMask);
+  bodies_.push_back(ground);
+}
+
+World::~World() {
+  for (int i = dynamics_->getNumConstraints() - 1; i >= 0; --i) {
+    btTypedConstraint* c = dynamics_->getConstraint(i);
+    dynamics_->removeConstraint(c);
+    delete c;
+  }
+  for (btRigidBody* b : bodies_) {
+    dynamics_->removeRigidBody(b);
+    delete b->getMotionState();
+    delete b;
+  }
+}
+
+btRigidBody* World::addBox(const Eigen::Vector3d& halfExtents, double mass,
+                           const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                           int group, int mask, double friction) {
+  shapes_.push_back(std::make_unique<btBoxShape>(toBt(halfExtents)));
+  btCollisionShape* shape = shapes_.back().get();
+  btVector3 inertia(0, 0, 0);
+  if (mass > 0) shape->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
+  btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, shape,
+                                                inertia);
+  info.m_startWorldTransform = btTransform(toBt(orientation), toBt(position));
+  info.m_friction = static_cast<btScalar>(friction);
+  auto* body = new btRigidBody(info);
+  body->setActivationState(DISABLE_DEACTIVATION);  // characters must never be put to sleep
+  dynamics_->addRigidBody(body, group, mask);
+  bodies_.push_back(body);
+  return body;
+}
+
+void World::removeBody(btRigidBody* body) {
+  auto it = std::find(bodies_.begin(), bodies_.end(), body);
+  if (it == bodies_.end()) return;
+  dynamics_->removeRigidBody(body);
+  bodies_.erase(it);
+  btCollisionShape* shape = body->getCollisionShape();
+  delete body;
+  shapes_.erase(std::remove_if(shapes_.begin(), shapes_.end(),
+                               [&](const auto& s) { return s.get() == shape; }),
+                shapes_.end());
+}
+
+void World::step() {
+  dynamics_->stepSimulation(static_cast<btScalar>(kFixedStep), 0,
+                            static_cast<btScalar>(kFixedStep));
+}
+
+bool World::groundHeight(double x, double z, double* height, Eigen::Vector3d* normal) const {
+  const btVector3 from(static_cast<btScalar>(x), 100, static_cast<btScalar>(z));
+  const btVector3 to(static_cast<btScalar>(x), -100, static_cast<btScalar>(z));
+  btCollisionWorld::ClosestRayResultCallback hit(from, to);
+  hit.m_collisionFilterGroup = kCharacterGroup;
+  hit.m_collisionFilterMask = kGroundGroup;  // the terrain, not props or characters
+  dynamics_->rayTest(from, to, hit);
+  if (!hit.hasHit()) return false;
+  *height = hit.m_hitPointWorld.y();
+  if (normal) *normal = toEigen(hit.m_hitNormalWorld);
+  return true;
+}
+
+}  // namespace gaitlab::physics

@@ -1,0 +1,62 @@
+// The Bullet adapter's world: ground, props, stepping, ray casts. Everything Bullet-specific in
+// gaitlab lives in physics/; the controller (gait/) never sees a Bullet type.
+#pragma once
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+class btBroadphaseInterface;
+class btCollisionDispatcher;
+class btCollisionShape;
+class btDefaultCollisionConfiguration;
+class btDiscreteDynamicsWorld;
+class btRigidBody;
+class btSequentialImpulseConstraintSolver;
+
+namespace gaitlab::physics {
+
+// Collision filtering (DESIGN.md, physics modelling): characters collide with the ground and
+// with props, but neither with themselves nor with each other — limbs of one figure overlap at
+// the joints by construction, and crowds are spaced so that characters do not meet; props
+// collide with everything.
+enum CollisionGroup : int { kGroundGroup = 1, kPropGroup = 2, kCharacterGroup = 4 };
+constexpr int kGroundMask = kPropGroup | kCharacterGroup;
+constexpr int kPropMask = kGroundGroup | kPropGroup | kCharacterGroup;
+constexpr int kCharacterMask = kGroundGroup | kPropGroup;
+
+// The fixed simulation step (thesis §3.2: Bullet at 120 Hz).
+constexpr double kFixedStep = 1.0 / 120.0;
+
+class World {
+ public:
+  World();
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  btDiscreteDynamicsWorld& dynamics() { return *dynamics_; }
+
+  // A box rigid body (mass 0 = static), added to the world with the given collision filter.
+  btRigidBody* addBox(const Eigen::Vector3d& halfExtents, double mass,
+                      const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                      int group, int mask, double friction);
+  void removeBody(btRigidBody* body);
+
+  // One fixed step of kFixedStep seconds (no sub-stepping, no interpolation: deterministic).
+  void step();
+
+  // Height of the ground (and anything static) below (x, z), by a downward ray cast.
+  // Returns false if nothing is hit.
+  bool groundHeight(double x, double z, double* height, Eigen::Vector3d* normal = nullptr) const;
+
+ private:
+  std::unique_ptr<btDefaultCollisionConfiguration> config_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btBroadphaseInterface> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<btRigidBody*> bodies_;  // owned; deleted in the destructor or removeBody
+};
+
+}  // namespace gaitlab::physics

@@ -1,0 +1,72 @@
+// The crowd simulation: one Bullet world, the characters in it, loose props, the fixed-step loop
+// (thesis §3.2: 120 Hz), the thread pool for per-character work, the state hash, and the render
+// buffer shared with the browser (render_buffer.h).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "body/morphology.h"
+#include "physics/character.h"
+#include "physics/world.h"
+#include "sim/render_buffer.h"
+#include "sim/thread_pool.h"
+
+namespace gaitlab::sim {
+
+enum class Kind { Biped = 0, Quadruped = 1, Box = 2 };
+
+class Simulation {
+ public:
+  static constexpr int kRenderCapacity = 16384;  // bodies
+
+  Simulation(int threads, uint32_t seed);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // Spawns a character standing at (x, z) or a box dropped from 1.5 m there. Returns its id,
+  // or -1 if the render buffer has no room left.
+  int spawn(Kind kind, double x, double z, double heading);
+  // `characters` figures on a grid, alternating biped and quadruped, plus a few boxes.
+  void demoScene(int characters);
+
+  void step(int steps);
+
+  double time() const { return stepIndex_ * physics::kFixedStep; }
+  uint32_t stepIndex() const { return stepIndex_; }
+  int bodyCount() const { return static_cast<int>(renderBodies_.size()); }
+  int threads() const { return pool_.size(); }
+  int characterCount() const { return static_cast<int>(characters_.size()); }
+  const physics::Character& character(int i) const { return *characters_[i]; }
+
+  // 64-bit FNV-1a over the exact bits of every body's transform and velocities, as 16 hex digits.
+  std::string stateHash() const;
+
+  const RenderHeader* renderBuffer() const { return header_; }
+
+ private:
+  struct RenderBody {
+    btRigidBody* body;
+    BodyInfo info;
+  };
+  void addRenderBody(btRigidBody* body, const BodyInfo& info);
+  void publish();  // writes transforms into the back buffer and flips it to the front
+
+  physics::World world_;
+  body::Morphology biped_, quadruped_;
+  std::vector<std::unique_ptr<physics::Character>> characters_;
+  std::vector<RenderBody> renderBodies_;
+  ThreadPool pool_;
+  uint32_t seed_;
+  uint32_t stepIndex_ = 0;
+  int nextId_ = 0;
+
+  std::vector<unsigned char> renderMemory_;  // header + 2 matrix buffers + body info
+  RenderHeader* header_ = nullptr;
+  float* matrices_[2] = {nullptr, nullptr};
+  BodyInfo* info_ = nullptr;
+};
+
+}  // namespace gaitlab::sim

@@ -1,0 +1,73 @@
+#include "sim/thread_pool.h"
+
+#include <chrono>
+
+namespace gaitlab::sim {
+
+namespace {
+// How long an idle worker keeps polling for the next loop before it sleeps. Long enough to
+// bridge the serial physics step between two controller loops at crowd sizes we run, short
+// enough that a paused simulation does not burn a core.
+constexpr auto kSpin = std::chrono::milliseconds(5);
+}  // namespace
+
+Range ThreadPool::chunk(int n, int threads, int t) {
+  const int base = n / threads, rest = n % threads;
+  const int begin = t * base + (t < rest ? t : rest);
+  return {begin, begin + base + (t < rest ? 1 : 0)};
+}
+
+ThreadPool::ThreadPool(int threads) {
+  if (threads < 1) threads = 1;
+  workers_.reserve(threads - 1);
+  for (int t = 1; t < threads; ++t) workers_.emplace_back([this, t] { workerLoop(t); });
+}
+
+ThreadPool::~ThreadPool() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_.store(true);
+  }
+  wake_.notify_all();
+  for (std::thread& w : workers_) w.join();
+}
+
+void ThreadPool::run(int n, Task task, void* ctx) {
+  task_ = task;
+  ctx_ = ctx;
+  n_ = n;
+  pending_.store(static_cast<int>(workers_.size()));
+  generation_.fetch_add(1);  // seq_cst: publishes task_, ctx_, n_ to the workers
+  if (sleeping_.load() > 0) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    wake_.notify_all();
+  }
+  const Range r = chunk(n, size(), 0);
+  if (r.begin < r.end) task(ctx, r.begin, r.end, 0);
+  while (pending_.load(std::memory_order_acquire) != 0) std::this_thread::yield();
+}
+
+void ThreadPool::workerLoop(int thread) {
+  uint64_t seen = 0;
+  for (;;) {
+    // Wait for a new loop: spin first, then sleep.
+    const auto spinUntil = std::chrono::steady_clock::now() + kSpin;
+    while (generation_.load() == seen && !stop_.load()) {
+      if (std::chrono::steady_clock::now() < spinUntil) {
+        std::this_thread::yield();
+        continue;
+      }
+      std::unique_lock<std::mutex> lock(mutex_);
+      sleeping_.fetch_add(1);
+      wake_.wait(lock, [&] { return generation_.load() != seen || stop_.load(); });
+      sleeping_.fetch_sub(1);
+    }
+    if (stop_.load()) return;
+    seen = generation_.load();
+    const Range r = chunk(n_, size(), thread);
+    if (r.begin < r.end) task_(ctx_, r.begin, r.end, thread);
+    pending_.fetch_sub(1, std::memory_order_release);
+  }
+}
+
+}  // namespace gaitlab::sim

@@ -1,0 +1,67 @@
+// A persistent pool of threads running parallel-for loops over characters (thesis §3.1:
+// "parallel-for paradigm for non-intrusive data parallel execution", §4.3: contiguous chunks,
+// the first N mod T chunks one larger).
+//
+// Hot-path rules (DESIGN.md, parallel execution): threads are created once; a parallelFor does
+// no heap allocation and takes no lock while the workers are awake. Idle workers spin briefly
+// (yielding) and then sleep on a condition variable, so an idle simulation costs no CPU; only
+// waking a sleeping worker takes the mutex.
+#pragma once
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <type_traits>
+#include <thread>
+#include <vector>
+
+namespace gaitlab::sim {
+
+struct Range {
+  int begin, end;
+};
+
+class ThreadPool {
+ public:
+  // `threads` >= 1 threads take part in each loop: the caller plus threads-1 workers.
+  explicit ThreadPool(int threads);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  int size() const { return static_cast<int>(workers_.size()) + 1; }
+
+  // Chunk `t` of `n` items split over `threads` (thesis §4.3).
+  static Range chunk(int n, int threads, int t);
+
+  // Calls fn(begin, end, thread) for each of size() contiguous chunks of [0, n), chunk t on
+  // thread t (the caller is thread 0), and returns when every chunk is done.
+  template <class F>
+  void parallelFor(int n, F&& fn) {
+    if (size() == 1 || n <= 1) {
+      if (n > 0) fn(0, n, 0);
+      return;
+    }
+    using Fn = std::remove_reference_t<F>;
+    run(n, [](void* ctx, int b, int e, int t) { (*static_cast<Fn*>(ctx))(b, e, t); },
+        const_cast<void*>(static_cast<const void*>(&fn)));
+  }
+
+ private:
+  using Task = void (*)(void*, int, int, int);
+  void run(int n, Task task, void* ctx);
+  void workerLoop(int thread);
+
+  std::vector<std::thread> workers_;
+  std::atomic<uint64_t> generation_{0};  // bumped once per parallelFor
+  std::atomic<int> pending_{0};          // workers still running the current loop
+  std::atomic<int> sleeping_{0};
+  std::atomic<bool> stop_{false};
+  Task task_ = nullptr;
+  void* ctx_ = nullptr;
+  int n_ = 0;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+};
+
+}  // namespace gaitlab::sim

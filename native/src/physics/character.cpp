@@ -52,7 +52,10 @@ Character::Character(World& world, const body::Morphology& morphology,
       auto* h = new btHingeConstraint(*parent, *child,
                                       parent->getWorldTransform().inverse() * hingeFrame,
                                       child->getWorldTransform().inverse() * hingeFrame, false);
-      h->setLimit(static_cast<btScalar>(j.lower[0]), static_cast<btScalar>(j.upper[0]));
+      // btHingeConstraint::getHingeAngle() measures the parent relative to the child, the
+      // opposite sign of our right-handed child-relative-to-parent angle (checked in
+      // tests/native/physics_test.cpp), so the limits are mirrored.
+      h->setLimit(static_cast<btScalar>(-j.upper[0]), static_cast<btScalar>(-j.lower[0]));
       c = h;
     } else {
       auto* g = new btGeneric6DofSpring2Constraint(
@@ -88,6 +91,33 @@ SegmentState Character::segmentState(int segment) const {
   const btTransform& t = b->getCenterOfMassTransform();
   return {toEigen(t.getOrigin()), toEigen(t.getRotation()), toEigen(b->getLinearVelocity()),
           toEigen(b->getAngularVelocity())};
+}
+
+}  // namespace gaitlab::physics
+
+namespace gaitlab::physics {
+
+void Character::readState(gait::BodyState* out) const {
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    const btRigidBody* b = bodies_[i];
+    const btTransform& t = b->getCenterOfMassTransform();
+    out[i] = {toEigen(t.getOrigin()), toEigen(t.getRotation()), toEigen(b->getLinearVelocity()),
+              toEigen(b->getAngularVelocity())};
+  }
+}
+
+void Character::applyJointTorques(const Eigen::Vector3d* torques) {
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    const int parent = morphology_.segments[i].parent;
+    if (parent < 0) continue;
+    const btVector3 t = toBt(torques[i]);
+    bodies_[i]->applyTorque(t);
+    bodies_[parent]->applyTorque(-t);
+  }
+}
+
+void Character::setFootContactFlag(int leg, bool* flag) {
+  bodies_[morphology_.legs[leg].foot]->setUserPointer(flag);
 }
 
 }  // namespace gaitlab::physics

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "body/morphology.h"
+#include "gait/controller.h"
 #include "physics/world.h"
 
 class btRigidBody;
@@ -35,6 +36,17 @@ class Character {
   btRigidBody* body(int segment) const { return bodies_[segment]; }
 
   SegmentState segmentState(int segment) const;
+
+  // The controller's view of the character (gait::CharacterState::segments), morphology order.
+  void readState(gait::BodyState* out) const;
+
+  // torques[segment]: torque of the joint between the segment and its parent, world frame.
+  // Applied as an equal and opposite pair: +τ on the segment, −τ on its parent (the original
+  // applied it to the child only, creating angular momentum from nothing: REFERENCE.md defect 3).
+  void applyJointTorques(const Eigen::Vector3d* torques);
+
+  // Marks foot `leg`'s body so that contact detection can find its flag (World::updateContacts).
+  void setFootContactFlag(int leg, bool* flag);
 
  private:
   World& world_;

@@ -20,9 +20,9 @@ World::World()
   shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0));
   btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
   info.m_friction = 1.0f;
-  auto* ground = new btRigidBody(info);
-  dynamics_->addRigidBody(ground, kGroundGroup, kGroundMask);
-  bodies_.push_back(ground);
+  ground_ = new btRigidBody(info);
+  dynamics_->addRigidBody(ground_, kGroundGroup, kGroundMask);
+  bodies_.push_back(ground_);
 }
 
 World::~World() {
@@ -41,7 +41,12 @@ World::~World() {
 btRigidBody* World::addBox(const Eigen::Vector3d& halfExtents, double mass,
                            const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
                            int group, int mask, double friction) {
-  shapes_.push_back(std::make_unique<btBoxShape>(toBt(halfExtents)));
+  // Bullet keeps a collision margin inside each box (0.04 m by default): more than a foot's
+  // half height (0.02-0.03 m), which left feet sinking through the ground. A margin of a fifth
+  // of the smallest half extent, at most 1 cm, keeps contacts stable and boxes their true size.
+  auto box = std::make_unique<btBoxShape>(toBt(halfExtents));
+  box->setMargin(static_cast<btScalar>(std::min(0.01, 0.2 * halfExtents.minCoeff())));
+  shapes_.push_back(std::move(box));
   btCollisionShape* shape = shapes_.back().get();
   btVector3 inertia(0, 0, 0);
   if (mass > 0) shape->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
@@ -84,6 +89,34 @@ bool World::groundHeight(double x, double z, double* height, Eigen::Vector3d* no
   *height = hit.m_hitPointWorld.y();
   if (normal) *normal = toEigen(hit.m_hitNormalWorld);
   return true;
+}
+
+double World::terrainHeight(double x, double z, double fallback) const {
+  const btVector3 from(static_cast<btScalar>(x), 100, static_cast<btScalar>(z));
+  const btVector3 to(static_cast<btScalar>(x), -100, static_cast<btScalar>(z));
+  btCollisionWorld::ClosestRayResultCallback hit(from, to);
+  btCollisionWorld::rayTestSingle(btTransform(btQuaternion::getIdentity(), from),
+                                  btTransform(btQuaternion::getIdentity(), to), ground_,
+                                  ground_->getCollisionShape(), ground_->getWorldTransform(), hit);
+  return hit.hasHit() ? hit.m_hitPointWorld.y() : fallback;
+}
+
+void World::updateContacts() const {
+  btDispatcher* d = dynamics_->getDispatcher();
+  for (int i = 0; i < d->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+    int touching = 0;
+    for (int c = 0; c < m->getNumContacts(); ++c)
+      if (m->getContactPoint(c).getDistance() < 0.01f) ++touching;
+    if (touching == 0) continue;
+    const btCollisionObject* a = m->getBody0();
+    const btCollisionObject* b = m->getBody1();
+    // Only contacts with the ground or props count as foot strikes.
+    const bool aEnv = !(a->getBroadphaseHandle()->m_collisionFilterGroup & kCharacterGroup);
+    const bool bEnv = !(b->getBroadphaseHandle()->m_collisionFilterGroup & kCharacterGroup);
+    if (bEnv && a->getUserPointer()) *static_cast<bool*>(a->getUserPointer()) = true;
+    if (aEnv && b->getUserPointer()) *static_cast<bool*>(b->getUserPointer()) = true;
+  }
 }
 
 }  // namespace gaitlab::physics

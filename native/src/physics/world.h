@@ -49,6 +49,17 @@ class World {
   // Returns false if nothing is hit.
   bool groundHeight(double x, double z, double* height, Eigen::Vector3d* normal = nullptr) const;
 
+  // The same ray cast against the terrain object alone, without the broadphase, so it is safe to
+  // call from many threads at once (the controller's ground queries). Returns `fallback` if the
+  // ray misses.
+  double terrainHeight(double x, double z, double fallback = 0.0) const;
+
+  // After a step: sets *flag = true for every body whose user pointer is a bool* flag (feet,
+  // Character::setFootContactFlag) and that touches the ground or a prop, counting contact points
+  // within 1 cm, so a touch-down registers before the foot penetrates (defect 8). Flags of
+  // bodies without contact are left alone: the caller clears them first.
+  void updateContacts() const;
+
  private:
   std::unique_ptr<btDefaultCollisionConfiguration> config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
@@ -57,6 +68,7 @@ class World {
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<btRigidBody*> bodies_;  // owned; deleted in the destructor or removeBody
+  btRigidBody* ground_ = nullptr;
 };
 
 }  // namespace gaitlab::physics

@@ -5,8 +5,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
+#include <chrono>
+#include <iterator>
 #include <new>
 
+#include "gait/defaults.h"
 #include "physics/convert.h"
 
 namespace gaitlab::sim {
@@ -57,8 +61,40 @@ Simulation::Simulation(int threads, uint32_t seed)
   publish();
 }
 
+Simulation::Agent::Agent(physics::World& w, const body::Morphology& m,
+                         const Eigen::Vector3d& origin, double heading)
+    : body(std::make_unique<physics::Character>(w, m, origin, heading)),
+      controller(m, gait::defaultParams(m), heading),
+      state(m.segments.size()),
+      torques(m.segments.size(), Eigen::Vector3d::Zero()),
+      world(&w) {
+  for (size_t l = 0; l < m.legs.size(); ++l) body->setFootContactFlag(static_cast<int>(l), &footContact[l]);
+}
+
 Simulation::~Simulation() {
-  characters_.clear();  // constraints and bodies leave the world before it is destroyed
+  agents_.clear();  // constraints and bodies leave the world before it is destroyed
+}
+
+void Simulation::setGoal(int i, const gait::Goal& goal) {
+  if (i < 0) {
+    for (auto& a : agents_) a->controller.setGoal(goal);
+  } else if (i < characterCount()) {
+    agents_[i]->controller.setGoal(goal);
+  }
+}
+
+void Simulation::control(Agent& a) {
+  // Algorithm 1 for one character: read state, compute torques, hand them to the physics.
+  a.body->readState(a.state.data());
+  gait::CharacterState cs;
+  cs.segments = a.state.data();
+  cs.footContact = a.footContact;
+  cs.ground.context = a.world;
+  cs.ground.height = [](const void* w, double x, double z) {
+    return static_cast<const physics::World*>(w)->terrainHeight(x, z);
+  };
+  a.controller.update(physics::kFixedStep, cs, a.torques.data());
+  a.body->applyJointTorques(a.torques.data());
 }
 
 void Simulation::addRenderBody(btRigidBody* body, const BodyInfo& info) {
@@ -81,10 +117,9 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   if (bodyCount() + static_cast<int>(m.segments.size()) > kRenderCapacity) return -1;
   double groundY = 0;
   world_.groundHeight(x, z, &groundY);
-  characters_.push_back(
-      std::make_unique<physics::Character>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
+  agents_.push_back(std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
   const int id = nextId_++;
-  const physics::Character& c = *characters_.back();
+  const physics::Character& c = *agents_.back()->body;
   for (int i = 0; i < c.segmentCount(); ++i) {
     const body::Segment& s = m.segments[i];
     addRenderBody(c.body(i), {{static_cast<float>(s.halfExtents.x()),
@@ -113,10 +148,18 @@ void Simulation::demoScene(int characters) {
 
 void Simulation::step(int steps) {
   for (int s = 0; s < steps; ++s) {
-    // Per-character work runs on the pool (thesis: the controller loop is the parallel-for).
-    // The controller (gait/) plugs in here; until then the figures are passive ragdolls.
-    pool_.parallelFor(characterCount(), [](int, int, int) {});
+    // The controller loop is the parallel-for (thesis §3.1, §4.3); physics is serial.
+    const auto t0 = std::chrono::steady_clock::now();
+    pool_.parallelFor(characterCount(), [this](int begin, int end, int) {
+      for (int i = begin; i < end; ++i) control(*agents_[i]);
+    });
+    const auto t1 = std::chrono::steady_clock::now();
     world_.step();
+    const auto t2 = std::chrono::steady_clock::now();
+    controllerSeconds_ += std::chrono::duration<double>(t1 - t0).count();
+    physicsSeconds_ += std::chrono::duration<double>(t2 - t1).count();
+    for (auto& a : agents_) std::fill(std::begin(a->footContact), std::end(a->footContact), false);
+    world_.updateContacts();
     ++stepIndex_;
   }
   publish();

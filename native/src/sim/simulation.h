@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "body/morphology.h"
+#include "gait/controller.h"
 #include "physics/character.h"
 #include "physics/world.h"
 #include "sim/render_buffer.h"
@@ -38,8 +39,18 @@ class Simulation {
   uint32_t stepIndex() const { return stepIndex_; }
   int bodyCount() const { return static_cast<int>(renderBodies_.size()); }
   int threads() const { return pool_.size(); }
-  int characterCount() const { return static_cast<int>(characters_.size()); }
-  const physics::Character& character(int i) const { return *characters_[i]; }
+  int characterCount() const { return static_cast<int>(agents_.size()); }
+  const physics::Character& character(int i) const { return *agents_[i]->body; }
+  physics::Character& character(int i) { return *agents_[i]->body; }
+  double groundHeight(double x, double z) const { return world_.terrainHeight(x, z); }
+  // Wall-clock seconds spent so far in the controller loop (thesis timing: from before the
+  // first thread starts until the last is done) and in the physics step.
+  double controllerSeconds() const { return controllerSeconds_; }
+  double physicsSeconds() const { return physicsSeconds_; }
+  gait::Controller& controller(int i) { return agents_[i]->controller; }
+  const gait::Controller& controller(int i) const { return agents_[i]->controller; }
+  // Steering (beyond the thesis): one character, or all with i = -1.
+  void setGoal(int i, const gait::Goal& goal);
 
   // 64-bit FNV-1a over the exact bits of every body's transform and velocities, as 16 hex digits.
   std::string stateHash() const;
@@ -56,11 +67,25 @@ class Simulation {
 
   physics::World world_;
   body::Morphology biped_, quadruped_;
-  std::vector<std::unique_ptr<physics::Character>> characters_;
+  // A character: its bodies in the world, its controller, and the buffers the controller reads
+  // and writes, allocated once so the per-step loop allocates nothing (defect 10).
+  struct Agent {
+    Agent(physics::World& world, const body::Morphology& m, const Eigen::Vector3d& origin,
+          double heading);
+    std::unique_ptr<physics::Character> body;
+    gait::Controller controller;
+    std::vector<gait::BodyState> state;
+    std::vector<Eigen::Vector3d> torques;
+    bool footContact[gait::kMaxLegs] = {false, false, false, false};
+    const physics::World* world;
+  };
+  void control(Agent& agent);
+  std::vector<std::unique_ptr<Agent>> agents_;
   std::vector<RenderBody> renderBodies_;
   ThreadPool pool_;
   uint32_t seed_;
   uint32_t stepIndex_ = 0;
+  double controllerSeconds_ = 0, physicsSeconds_ = 0;
   int nextId_ = 0;
 
   std::vector<unsigned char> renderMemory_;  // header + 2 matrix buffers + body info

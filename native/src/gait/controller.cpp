@@ -1,0 +1,345 @@
+#include "gait/controller.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gait/foot_placement.h"
+#include "gait/gravity.h"
+#include "gait/heading.h"
+#include "gait/ik.h"
+#include "gait/pd.h"
+#include "gait/virtual_force.h"
+
+namespace gaitlab::gait {
+
+using Eigen::Quaterniond;
+using Eigen::Vector3d;
+
+namespace {
+
+// Orientation whose −y axis points along `down` (a limb hanging from its joint) and whose +z axis
+// is as close as possible to `forward`: the desired orientation of a thigh from the IK direction.
+Quaterniond limbOrientation(const Vector3d& down, const Vector3d& forward) {
+  const Vector3d y = -down.normalized();
+  Vector3d z = forward - forward.dot(y) * y;
+  if (z.squaredNorm() < 1e-12) z = y.unitOrthogonal();
+  z.normalize();
+  Eigen::Matrix3d r;
+  r.col(0) = y.cross(z);
+  r.col(1) = y;
+  r.col(2) = z;
+  return Quaterniond(r);
+}
+
+Vector3d clampNorm(const Vector3d& v, double max) {
+  const double n = v.norm();
+  return n > max ? v * (max / n) : v;
+}
+
+// Signed rotation angle of `rel` about unit axis `axis` (swing–twist decomposition).
+double twistAngle(const Quaterniond& rel, const Vector3d& axis) {
+  const double p = rel.vec().dot(axis);
+  double a = 2.0 * std::atan2(p, rel.w());
+  return wrapAngle(a);
+}
+
+}  // namespace
+
+Controller::Controller(const body::Morphology& morphology, const GaitParams& params,
+                       double heading)
+    : m_(morphology), params_(params), desiredHeading_(heading) {
+  for (const body::Leg& leg : m_.legs) {
+    const body::Segment& frame = m_.segments[leg.legFrame];
+    const body::Segment& upper = m_.segments[leg.upper];
+    const body::Segment& lower = m_.segments[leg.lower];
+    const body::Segment& foot = m_.segments[leg.foot];
+    LegGeometry g;
+    g.hipInFrame = upper.joint.pivot - frame.center;
+    g.thigh = (lower.joint.pivot - upper.joint.pivot).norm();
+    g.shin = (foot.joint.pivot - lower.joint.pivot).norm();
+    g.ankleHeight = foot.joint.pivot.y() - (foot.center.y() - foot.halfExtents.y());
+    g.ankleInFoot = foot.joint.pivot - foot.center;
+    g.side = upper.joint.pivot.x() >= 0 ? 1.0 : -1.0;
+    geometry_.push_back(g);
+  }
+  liftOff_.assign(m_.legs.size(), Vector3d::Zero());
+  setParams(params);
+}
+
+void Controller::setParams(const GaitParams& params) {
+  const bool first = player_.legCount() == 0;
+  params_ = params;
+  LegSchedule schedule[kMaxLegs];
+  for (size_t i = 0; i < m_.legs.size(); ++i) {
+    schedule[i].stepTrigger = params.legs[i].stepTrigger;
+    schedule[i].dutyFactor = params.legs[i].dutyFactor;
+  }
+  if (first) {
+    player_.configure(static_cast<int>(m_.legs.size()), schedule, params.period);
+  } else {
+    player_.setPeriod(params.period);
+    for (size_t i = 0; i < m_.legs.size(); ++i) player_.setLegSchedule(static_cast<int>(i), schedule[i]);
+  }
+}
+
+void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
+  const int segments = static_cast<int>(m_.segments.size());
+  for (int i = 0; i < segments; ++i) torques[i].setZero();
+
+  // Heading frame (correction of defect 7: nothing in world axes) and the goal (steering).
+  const BodyState& root = s.segments[m_.legFrames[0]];
+  const double yaw = headingOf(root.orientation);
+  desiredHeading_ = wrapAngle(desiredHeading_ + goal_.turnRate * dt);
+  // Keep the heading goal within reach: a character knocked around does not try to spin back
+  // through half a turn at once.
+  const double headingError = wrapAngle(desiredHeading_ - yaw);
+  if (std::abs(headingError) > 0.6) desiredHeading_ = wrapAngle(yaw + std::copysign(0.6, headingError));
+
+  // Centre-of-mass velocity in m/s (defect 1: the original never divided by dt).
+  Vector3d comVelocity = Vector3d::Zero();
+  double mass = 0;
+  for (int i = 0; i < segments; ++i) {
+    comVelocity += m_.segments[i].mass * s.segments[i].linearVelocity;
+    mass += m_.segments[i].mass;
+  }
+  comVelocity /= mass;
+  Vector3d velocityH = worldToHeading(yaw, comVelocity);
+  velocityH.y() = 0;
+  desiredVelocity_ = rampDesiredVelocity(desiredVelocity_, Vector3d(0, 0, goal_.speed),
+                                         params_.maxAcceleration, dt);
+
+  // Gait player (§3.1.1): phase, stance/swing, early and late strikes.
+  player_.update(dt, s.footContact);
+  const double phase = player_.phase();
+
+  if (!m_.spine.empty()) spine(s, torques);
+
+  for (size_t lfIndex = 0; lfIndex < m_.legFrames.size(); ++lfIndex) {
+    const int lf = m_.legFrames[lfIndex];
+    const LegFrameParams& p = params_.legFrames[lfIndex];
+    const BodyState& frame = s.segments[lf];
+
+    int stance = 0;
+    for (size_t l = 0; l < m_.legs.size(); ++l)
+      if (m_.legs[l].legFrame == lf && player_.leg(static_cast<int>(l)).stance) ++stance;
+
+    // Stance forces on the leg frame (§3.1.4): height F_h, velocity F_v (eq. 3.6); F_D per leg.
+    const double ground = s.ground.at(frame.position.x(), frame.position.z());
+    const double height = ground + m_.segments[lf].center.y() + p.heightOffset.eval(phase);
+    const Vector3d fh(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
+    const Vector3d fv = velocityForce(p.velocityGain, headingToWorld(yaw, desiredVelocity_), comVelocity);
+
+    for (size_t l = 0; l < m_.legs.size(); ++l) {
+      const body::Leg& leg = m_.legs[l];
+      if (leg.legFrame != lf) continue;
+      const int li = static_cast<int>(l);
+      if (player_.leg(li).events & kLiftOff) {
+        const BodyState& foot = s.segments[leg.foot];
+        liftOff_[l] = foot.position + foot.orientation * geometry_[l].ankleInFoot -
+                      Vector3d(0, geometry_[l].ankleHeight, 0);
+      }
+      if (player_.leg(li).stance) {
+        const BodyState& foot = s.segments[leg.foot];
+        const double d = footProgress(frame.position, foot.position, yaw);
+        const PhaseForceCoefficients c{p.fd[0], p.fd[1], p.fd[2], p.fd[3]};
+        stanceLeg(li, s, yaw, (fh + fv) / stance + phaseForce(c, d, yaw), torques);
+      } else {
+        swingLeg(li, s, yaw, velocityH, torques);
+      }
+    }
+
+    // Leg-frame torque feedback (§3.1.3, eq. 3.4–3.5): the torque the leg frame should feel,
+    // from a PD towards its orientation graphs in the heading frame, is delivered through the
+    // stance hips, which take up whatever the swing hips and the spine already exert on it.
+    if (stance == 0) continue;
+    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
+                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
+                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
+    const Vector3d wanted = orientationPd(p.orientationKp, p.orientationKd, frame.orientation,
+                                          desired, frame.angularVelocity);
+    Vector3d others = Vector3d::Zero();  // torque on the leg frame from swing hips and spine
+    for (int i = 0; i < segments; ++i) {
+      const body::Segment& seg = m_.segments[i];
+      bool stanceHip = false;
+      for (size_t l = 0; l < m_.legs.size(); ++l)
+        if (m_.legs[l].upper == i && player_.leg(static_cast<int>(l)).stance) stanceHip = true;
+      if (seg.parent == lf && !stanceHip) others -= torques[i];
+    }
+    if (m_.segments[lf].parent >= 0) others += torques[lf];
+    const Vector3d perHip = -(wanted - others) / stance;
+    for (size_t l = 0; l < m_.legs.size(); ++l)
+      if (m_.legs[l].legFrame == lf && player_.leg(static_cast<int>(l)).stance)
+        torques[m_.legs[l].upper] = perHip;
+  }
+
+  for (const body::Leg& leg : m_.legs) {
+    const Vector3d axis = s.segments[leg.upper].orientation * Vector3d::UnitY();
+    Vector3d& t = torques[leg.upper];
+    t -= (1.0 - params_.gains.hipTwistScale) * t.dot(axis) * axis;
+  }
+  for (int i = 0; i < segments; ++i) torques[i] = clampNorm(torques[i], params_.gains.maxTorque);
+}
+
+void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vector3d& force,
+                           Vector3d* torques) {
+  const body::Leg& leg = m_.legs[l];
+  const LegGeometry& g = geometry_[l];
+  const JointGains& k = params_.gains;
+  const BodyState& frame = s.segments[leg.legFrame];
+  const BodyState& thigh = s.segments[leg.upper];
+  const BodyState& shin = s.segments[leg.lower];
+  const BodyState& foot = s.segments[leg.foot];
+
+  // The leg frame is the base, the stance foot the end point: the opposite of the force wanted
+  // on the leg frame is applied at the foot (§3.1.4, Figure 3.4).
+  const Vector3d hip = frame.position + frame.orientation * g.hipInFrame;
+  const Vector3d knee = thigh.position + thigh.orientation * Vector3d(0, -g.thigh / 2, 0);
+  const Vector3d ankle = foot.position + foot.orientation * g.ankleInFoot;
+  DofChain chain;
+  chain.push(Vector3d::UnitX(), hip, leg.upper);
+  chain.push(Vector3d::UnitY(), hip, leg.upper);
+  chain.push(Vector3d::UnitZ(), hip, leg.upper);
+  chain.push(thigh.orientation * Vector3d::UnitX(), knee, leg.lower);
+  chain.push(shin.orientation * Vector3d::UnitX(), ankle, leg.foot);
+  chain.push(foot.orientation * Vector3d::UnitZ(), ankle, leg.foot);
+  const Vector3d sole = ankle - Vector3d(0, g.ankleHeight, 0);
+  accumulateJointTorques(chain, sole, -force, torques, static_cast<int>(m_.segments.size()));
+
+  // Knee: PD towards a slightly bent stance knee (§3.1.4, §3.1.7).
+  const Vector3d kneeAxis = thigh.orientation * Vector3d::UnitX();
+  const double flexion = leg.kneeBend * twistAngle(thigh.orientation.conjugate() * shin.orientation, Vector3d::UnitX());
+  const double rate = leg.kneeBend * (shin.angularVelocity - thigh.angularVelocity).dot(kneeAxis);
+  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, k.stanceKneeFlexion - flexion, -rate) * kneeAxis;
+
+  // Foot flat until toe-off time, then towards the toe-off angle (§3.1.6).
+  const LegParams& lp = params_.legs[l];
+  const LegFrameParams& fp = params_.legFrames[leg.legFrame == m_.legFrames[0] ? 0 : 1];
+  footPd(l, s, yaw, player_.leg(l).progress > lp.toeOffTime ? fp.toeOffAngle : 0.0, 1.0, torques);
+}
+
+void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vector3d& velocityH,
+                          Vector3d* torques) {
+  const body::Leg& leg = m_.legs[l];
+  const LegGeometry& g = geometry_[l];
+  const JointGains& k = params_.gains;
+  const int lfIndex = leg.legFrame == m_.legFrames[0] ? 0 : 1;
+  const LegFrameParams& p = params_.legFrames[lfIndex];
+  const LegParams& lp = params_.legs[l];
+  const LegGaitState& state = player_.leg(l);
+  const BodyState& frame = s.segments[leg.legFrame];
+  const BodyState& thigh = s.segments[leg.upper];
+  const BodyState& shin = s.segments[leg.lower];
+  const BodyState& foot = s.segments[leg.foot];
+  const double phi = state.stance ? 1.0 : state.progress;
+
+  // Foot placement (§3.1.6): P1 = P_lf + (v − v_d)·s, re-evaluated every step (defect 8), on the
+  // ground under it (defect 7: ray cast, not a constant).
+  const Vector3d nominal = nominalFootOffset(g.side, p.stepSideways, p.stepForward);
+  Vector3d p1 = footPlacementTarget(frame.position, yaw, nominal, velocityH, desiredVelocity_,
+                                    p.footPlacementScale, 0.0);
+  p1.y() = s.ground.at(p1.x(), p1.z());
+  const Vector3d footTarget = swingFootTarget(liftOff_[l], p1, phi, p.swingEase, p.stepHeight,
+                                              state.lateStrikeOffset);
+  const Vector3d ankleTarget = footTarget + Vector3d(0, g.ankleHeight, 0);
+
+  // Hip and knee by two-link IK (law of cosines) plus PD (§3.1.4).
+  const Vector3d hip = frame.position + frame.orientation * g.hipInFrame;
+  const Vector3d forward = headingForward(yaw);
+  const TwoLinkIk ik = solveTwoLinkIk(hip, ankleTarget, g.thigh, g.shin, forward * leg.kneeBend);
+  const Quaterniond thighWanted = limbOrientation(ik.thighDir, forward);
+  torques[leg.upper] += orientationPd(k.hipKp, k.hipKd, thigh.orientation, thighWanted,
+                                      thigh.angularVelocity, frame.angularVelocity);
+  const Vector3d kneeAxis = thigh.orientation * Vector3d::UnitX();
+  const double flexion = leg.kneeBend * twistAngle(thigh.orientation.conjugate() * shin.orientation, Vector3d::UnitX());
+  const double rate = leg.kneeBend * (shin.angularVelocity - thigh.angularVelocity).dot(kneeAxis);
+  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, ik.kneeFlexion - flexion, -rate) * kneeAxis;
+
+  // Swing virtual force F_sw with gain k_ft(ϕ), K_d = 0.1 K_p (§3.1.4; defect 2), and gravity
+  // compensation of the swing leg's segments (§3.1.5), both over the chain leg frame → ankle.
+  const Vector3d knee = thigh.position + thigh.orientation * Vector3d(0, -g.thigh / 2, 0);
+  const Vector3d ankle = foot.position + foot.orientation * g.ankleInFoot;
+  const Vector3d ankleVelocity = shin.linearVelocity + shin.angularVelocity.cross(ankle - shin.position);
+  DofChain chain;
+  chain.push(Vector3d::UnitX(), hip, leg.upper);
+  chain.push(Vector3d::UnitY(), hip, leg.upper);
+  chain.push(Vector3d::UnitZ(), hip, leg.upper);
+  chain.push(kneeAxis, knee, leg.lower);
+  chain.push(shin.orientation * Vector3d::UnitX(), ankle, leg.foot);
+  chain.push(foot.orientation * Vector3d::UnitZ(), ankle, leg.foot);
+  const int n = static_cast<int>(m_.segments.size());
+  accumulateJointTorques(chain, ankle,
+                         swingFootForce(p.footTrackingGain.eval(phi), ankle, ankleVelocity, ankleTarget),
+                         torques, n, 4);
+  SegmentLoad loads[3];
+  loads[0] = {m_.segments[leg.upper].mass, thigh.position, 3, 1.0};
+  loads[1] = {m_.segments[leg.lower].mass, shin.position, 4, 1.0};
+  loads[2] = {m_.segments[leg.foot].mass, foot.position, 6, 1.0};
+  accumulateGravityCompensation(chain, loads, 3, gravity_, torques, n);
+
+  // Foot: level during swing, to the strike angle after the strike time (§3.1.6).
+  footPd(l, s, yaw, phi > lp.strikeTime ? p.strikeAngle : 0.0, 0.5, torques);
+}
+
+void Controller::footPd(int l, const CharacterState& s, double yaw, double pitch, double gainScale,
+                        Vector3d* torques) {
+  const body::Leg& leg = m_.legs[l];
+  const BodyState& shin = s.segments[leg.lower];
+  const BodyState& foot = s.segments[leg.foot];
+  const Quaterniond wanted = headingQuat(yaw) * Quaterniond(Eigen::AngleAxisd(pitch, Vector3d::UnitX()));
+  torques[leg.foot] += orientationPd(params_.gains.ankleKp * gainScale, params_.gains.ankleKd * gainScale,
+                                     foot.orientation, wanted, foot.angularVelocity, shin.angularVelocity);
+}
+
+void Controller::spine(const CharacterState& s, Vector3d* torques) {
+  // Spine joints hold the rest shape (§3.1.7), and the spine links are held up against gravity
+  // through both leg frames with weights that sum to one (§3.1.5; defect 5, defect 6: every
+  // link driven, targets are rotations).
+  const JointGains& k = params_.gains;
+  const int n = static_cast<int>(m_.segments.size());
+  const int front = m_.legFrames[0], back = m_.legFrames[1];
+  // Joints along the spine, front to back: spine links, then the back leg frame.
+  int joints[8];
+  int count = 0;
+  for (int link : m_.spine) joints[count++] = link;
+  joints[count++] = back;
+  for (int j = 0; j < count; ++j) {
+    const int child = joints[j];
+    const BodyState& c = s.segments[child];
+    const BodyState& pa = s.segments[m_.segments[child].parent];
+    torques[child] += jointPd(k.spineKp, k.spineKd, pa.orientation, c.orientation,
+                              Quaterniond::Identity(), pa.angularVelocity, c.angularVelocity);
+  }
+  const auto pivot = [&](int child) {
+    const body::Segment& seg = m_.segments[child];
+    return Vector3d(s.segments[child].position + s.segments[child].orientation * (seg.joint.pivot - seg.center));
+  };
+  for (size_t li = 0; li < m_.spine.size(); ++li) {
+    const int link = m_.spine[li];
+    const SpineWeights w = spineGravityWeights(s.segments[back].position, s.segments[front].position,
+                                               s.segments[link].position);
+    // From the front leg frame: joints spine[0..li], crossed parent → child.
+    DofChain fromFront;
+    for (size_t j = 0; j <= li; ++j) {
+      const int child = m_.spine[j];
+      const Vector3d b = pivot(child);
+      fromFront.push(Vector3d::UnitX(), b, child);
+      fromFront.push(Vector3d::UnitY(), b, child);
+      fromFront.push(Vector3d::UnitZ(), b, child);
+    }
+    SegmentLoad load{m_.segments[link].mass, s.segments[link].position, fromFront.count, w.front};
+    accumulateGravityCompensation(fromFront, &load, 1, gravity_, torques, n);
+    // From the back leg frame: its joint, then spine links back to front, crossed child → parent.
+    DofChain fromBack;
+    for (int j = count - 1; j > static_cast<int>(li); --j) {
+      const int child = joints[j];
+      const Vector3d b = pivot(child);
+      fromBack.push(Vector3d::UnitX(), b, child, true);
+      fromBack.push(Vector3d::UnitY(), b, child, true);
+      fromBack.push(Vector3d::UnitZ(), b, child, true);
+    }
+    load = {m_.segments[link].mass, s.segments[link].position, fromBack.count, w.back};
+    accumulateGravityCompensation(fromBack, &load, 1, gravity_, torques, n);
+  }
+}
+
+}  // namespace gaitlab::gait

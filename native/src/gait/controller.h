@@ -1,0 +1,87 @@
+// The locomotion controller of one character (thesis §3.1, Algorithm 1): reads the character's
+// state, writes one torque per joint. Physics-free: it sees the character only through
+// CharacterState, and asks for ground heights through a callback, so it can be tested without
+// Bullet and run for many characters in parallel (no heap allocation in update()).
+#pragma once
+#include <Eigen/Dense>
+#include <vector>
+
+#include "body/morphology.h"
+#include "gait/gait_player.h"
+#include "gait/params.h"
+
+namespace gaitlab::gait {
+
+struct BodyState {
+  Eigen::Vector3d position;  // centre of mass, world
+  Eigen::Quaterniond orientation;
+  Eigen::Vector3d linearVelocity;   // m/s
+  Eigen::Vector3d angularVelocity;  // rad/s
+};
+
+// Ground height under a point; the physics side answers it by ray casts against the terrain.
+struct GroundQuery {
+  double (*height)(const void* context, double x, double z) = nullptr;
+  const void* context = nullptr;
+  double at(double x, double z) const { return height ? height(context, x, z) : 0.0; }
+};
+
+struct CharacterState {
+  const BodyState* segments = nullptr;  // morphology order
+  const bool* footContact = nullptr;    // per leg, this step
+  GroundQuery ground;
+};
+
+// What the user asks for (beyond the thesis: steering).
+struct Goal {
+  double speed = 0;     // m/s, forward in the heading frame (negative walks backwards)
+  double turnRate = 0;  // rad/s about +y
+};
+
+class Controller {
+ public:
+  Controller(const body::Morphology& morphology, const GaitParams& params, double heading);
+
+  const GaitParams& params() const { return params_; }
+  void setParams(const GaitParams& params);
+  void setGoal(const Goal& goal) { goal_ = goal; }
+  const Goal& goal() const { return goal_; }
+
+  // One fixed step (Algorithm 1). torques[segment] is the torque of the joint between `segment`
+  // and its parent, world frame, exerted on the segment; the physics side applies its opposite
+  // to the parent (an equal and opposite pair: REFERENCE.md defect 3). Root entries are zero.
+  void update(double dt, const CharacterState& state, Eigen::Vector3d* torques);
+
+  const GaitPlayer& player() const { return player_; }
+  double desiredHeading() const { return desiredHeading_; }
+  const Eigen::Vector3d& desiredVelocity() const { return desiredVelocity_; }  // heading frame
+
+ private:
+  struct LegGeometry {
+    Eigen::Vector3d hipInFrame;  // hip pivot relative to the leg frame's centre, leg-frame axes
+    double thigh, shin;          // hip→knee, knee→ankle lengths
+    double ankleHeight;          // ankle pivot above the sole
+    Eigen::Vector3d ankleInFoot;  // ankle pivot relative to the foot's centre, foot axes
+    double side;                 // +1 left (+x), −1 right
+  };
+
+  void stanceLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& force,
+                 Eigen::Vector3d* torques);
+  void swingLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& velocity,
+                Eigen::Vector3d* torques);
+  void footPd(int leg, const CharacterState& s, double yaw, double pitch, double gainScale,
+              Eigen::Vector3d* torques);
+  void spine(const CharacterState& s, Eigen::Vector3d* torques);
+
+  const body::Morphology& m_;
+  GaitParams params_;
+  Goal goal_;
+  GaitPlayer player_;
+  std::vector<LegGeometry> geometry_;
+  std::vector<Eigen::Vector3d> liftOff_;  // per leg: foot position at lift-off (P0)
+  double desiredHeading_;
+  Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gravity_{0, -9.81, 0};
+};
+
+}  // namespace gaitlab::gait

@@ -1,0 +1,29 @@
+// Two-link inverse kinematics by the law of cosines (thesis §3.1.4): the virtual forces do not
+// place the knee, so the knee position is solved from the hip and the foot target, and joint
+// PD controllers then drive the leg towards it.
+#pragma once
+#include <Eigen/Dense>
+
+namespace gaitlab::gait {
+
+struct TwoLinkIk {
+  Eigen::Vector3d knee;      // knee position, world
+  Eigen::Vector3d foot;      // where the shin ends: the target if reachable, else the closest point
+  Eigen::Vector3d thighDir;  // unit, hip → knee
+  Eigen::Vector3d shinDir;   // unit, knee → foot
+  double kneeAngle;          // interior angle hip–knee–foot: π = straight leg, 0 = fully folded
+  double kneeFlexion;        // π − kneeAngle: 0 = straight (the joint angle a PD usually tracks)
+  bool reachable;            // |l1 − l2| ≤ |target − hip| ≤ l1 + l2
+};
+
+// Solves the leg hip → knee → foot for a foot target. The knee is placed on the side of the
+// hip→target line that `bendDir` points to (bipeds: the knee points forward, bendDir = heading
+// forward; quadruped legs whose knee points backwards: bendDir = −forward). Only the part of
+// bendDir perpendicular to hip→target matters; if none is left, a fixed perpendicular is used.
+// Out of reach (> l1 + l2): the leg is straight, pointing at the target. Closer than |l1 − l2|:
+// fully folded. Every output is finite for any finite-length input, including target == hip,
+// zero lengths and a zero bendDir; a non-finite target is treated as the hip.
+TwoLinkIk solveTwoLinkIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& target, double thigh,
+                         double shin, const Eigen::Vector3d& bendDir);
+
+}  // namespace gaitlab::gait

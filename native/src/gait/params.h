@@ -1,0 +1,59 @@
+// The parameters of one character's gait (thesis §3.3: per controller, per leg frame, per leg).
+// The schema that names, bounds and documents every field lives in gait/schema.h; this is the
+// plain data the controller reads each step.
+#pragma once
+#include "gait/graph.h"
+
+namespace gaitlab::gait {
+
+constexpr int kMaxLegFrames = 2;
+constexpr int kMaxLegs = 4;
+
+struct LegFrameParams {
+  // Motion graphs over the gait phase Φ (§3.1.3): the leg frame's desired orientation in the
+  // heading frame (radians) and its height above its standing height (metres).
+  MotionGraph pitch, roll, yaw, heightOffset;
+  // Over swing progress ϕ (§3.1.4, §3.1.6): foot-tracking gain k_ft (N/m), step height h_sw (m),
+  // swing easing t_sw (fraction of the way from lift-off to strike point).
+  MotionGraph footTrackingGain, stepHeight, swingEase;
+  double heightKp = 0, heightKd = 0;  // F_h PD gains (N/m, N·s/m)
+  double velocityGain = 0;            // K_v of F_v = K_v (v_d − v) (eq. 3.6), N·s/m
+  double fd[4] = {0, 0, 0, 0};        // c0..c3 of F_D(D) (eq. 3.8)
+  double footPlacementScale = 0;      // s of P1 = P_lf + (v − v_d)·s (§3.1.6), seconds
+  double stepSideways = 0;            // nominal foot offset from the leg frame's centre, m
+  double stepForward = 0;             // m
+  double toeOffAngle = 0;             // foot pitch at lift-off, rad (+ = toes down)
+  double strikeAngle = 0;             // foot pitch at strike, rad (− = toes up)
+  double orientationKp = 0, orientationKd = 0;  // leg-frame orientation PD (§3.1.3)
+};
+
+struct LegParams {
+  double stepTrigger = 0;  // gait phase of lift-off (§3.1.1)
+  double dutyFactor = 0;   // fraction of the cycle in stance
+  double toeOffTime = 0;   // stance progress after which the foot pitches to toeOffAngle
+  double strikeTime = 0;   // swing progress after which the foot pitches to strikeAngle
+};
+
+// Joint PD gains (§3.1.7) and limits shared by all legs of a character.
+struct JointGains {
+  double hipKp = 0, hipKd = 0;
+  double kneeKp = 0, kneeKd = 0;
+  double ankleKp = 0, ankleKd = 0;
+  double spineKp = 0, spineKd = 0;
+  double stanceKneeFlexion = 0;  // rad, the stance knee's PD target
+  // Share of the hip torque kept about the thigh's long axis. A limb's inertia about its own
+  // axis is ~20× smaller than about the hip, so at 120 Hz the gains that hold the thigh's swing
+  // would make its twist unstable (explicit PD: k_d·dt/I must stay below ~1).
+  double hipTwistScale = 1;
+  double maxTorque = 0;          // N·m, clamp per joint
+};
+
+struct GaitParams {
+  double period = 1;        // T, seconds (§3.1.1)
+  double maxAcceleration = 1;  // m/s², bound on the desired-velocity ramp (§3.1.6)
+  JointGains gains;
+  LegFrameParams legFrames[kMaxLegFrames];
+  LegParams legs[kMaxLegs];
+};
+
+}  // namespace gaitlab::gait

@@ -1,0 +1,124 @@
+#include "sim/walk_trial.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+
+#include "gait/heading.h"
+
+namespace gaitlab::sim {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+bool hasFallen(const Simulation& sim, int c) {
+  const physics::Character& ch = sim.character(c);
+  const body::Morphology& m = ch.morphology();
+  for (int lf : m.legFrames) {
+    const physics::SegmentState s = ch.segmentState(lf);
+    const double ground = sim.groundHeight(s.position.x(), s.position.z());
+    if (s.position.y() - ground < 0.5 * m.segments[lf].center.y()) return true;
+    const Eigen::Vector3d up = s.orientation * Eigen::Vector3d::UnitY();
+    if (up.y() < std::cos(60.0 * kPi / 180.0)) return true;
+  }
+  return false;
+}
+
+WalkResult runWalk(const WalkOptions& o) {
+  WalkResult r;
+  r.goalSpeed = o.speed;
+  Simulation sim(1, o.seed);
+  const int id = sim.spawn(o.character, 0, 0, 0);
+  (void)id;
+  if (o.params) sim.controller(0).setParams(*o.params);
+  sim.setGoal(0, {o.speed, o.turnRate});
+  const body::Morphology& m = sim.character(0).morphology();
+  const int root = m.legFrames[0];
+
+  const int steps = static_cast<int>(std::lround(o.seconds / physics::kFixedStep));
+  const int half = steps / 2;
+  const auto rootState = [&] { return sim.character(0).segmentState(root); };
+  const Eigen::Vector3d start = rootState().position;
+  const double startHeading = gait::headingOf(rootState().orientation);
+  Eigen::Vector3d halfPos = start;
+  double halfHeading = startHeading, unwrapped = 0, lastHeading = startHeading, halfUnwrapped = 0;
+  double nextPush = o.pushEvery > 0 && o.pushImpulse > 0 ? 2.0 : -1;
+  double pushPending = -1;  // time of the last push still to be judged
+  uint32_t rng = o.seed * 2654435761u + 1;
+  const auto random = [&] {
+    rng ^= rng << 13;
+    rng ^= rng >> 17;
+    rng ^= rng << 5;
+    return (rng >> 8) * (1.0 / 16777216.0);
+  };
+  const double controller0 = sim.controllerSeconds();
+
+  for (int step = 0; step < steps; ++step) {
+    const double t = sim.time();
+    if (nextPush >= 0 && t >= nextPush) {
+      // A lateral push (in the heading frame), left or right at random.
+      const physics::SegmentState s = rootState();
+      const double h = gait::headingOf(s.orientation);
+      const Eigen::Vector3d left = gait::headingLeft(h) * (random() < 0.5 ? -1.0 : 1.0);
+      btRigidBody* b = sim.character(0).body(root);
+      b->applyCentralImpulse(btVector3(static_cast<btScalar>(left.x() * o.pushImpulse), 0,
+                                       static_cast<btScalar>(left.z() * o.pushImpulse)));
+      ++r.pushesApplied;
+      pushPending = t;
+      nextPush = t + o.pushEvery * (0.75 + 0.5 * random());  // random phase of the gait
+    }
+    sim.step(1);
+    const physics::SegmentState s = rootState();
+    const double h = gait::headingOf(s.orientation);
+    unwrapped += gait::wrapAngle(h - lastHeading);
+    lastHeading = h;
+    if (step + 1 == half) {
+      halfPos = s.position;
+      halfHeading = h;
+      halfUnwrapped = unwrapped;
+    }
+    if (o.trace && (step + 1) % 12 == 0) {
+      r.trace.insert(r.trace.end(), {s.position.x(), s.position.y(), s.position.z(), h});
+    }
+    if (pushPending >= 0 && sim.time() - pushPending >= 2.0) {
+      ++r.pushesSurvived;
+      pushPending = -1;
+    }
+    if (hasFallen(sim, 0)) {
+      r.fell = true;
+      r.fallTime = sim.time();
+      break;
+    }
+  }
+  const physics::SegmentState end = rootState();
+  const double elapsed = sim.time();
+  r.seconds = elapsed;
+  const Eigen::Vector3d d = end.position - start;
+  r.distance = std::hypot(d.x(), d.z());
+  const double secondHalf = elapsed - half * physics::kFixedStep;
+  if (!r.fell && secondHalf > 0) {
+    const Eigen::Vector3d dh = end.position - halfPos;
+    // Speed along the path: heading-frame forward displacement would hide sideways drift, and a
+    // turning character's chord would understate it, so take the path length of the trace-free
+    // estimate: chord over the half, corrected for the turned arc.
+    const double turned = unwrapped - halfUnwrapped;
+    const double chord = std::hypot(dh.x(), dh.z());
+    const double arc = std::abs(turned) > 1e-3 ? chord * (turned / 2) / std::sin(turned / 2) : chord;
+    r.meanSpeed = std::abs(arc) / secondHalf;
+    r.yawRate = turned / secondHalf;
+  }
+  (void)halfHeading;
+  r.headingDrift = std::abs(unwrapped - o.turnRate * elapsed) * 180.0 / kPi;
+  const gait::GaitPlayer& player = sim.controller(0).player();
+  for (int l = 0; l < player.legCount(); ++l) {
+    r.dutyMeasured.push_back(player.measuredDutyFactor(l));
+    r.dutyConfig.push_back(player.schedule(l).dutyFactor);
+  }
+  const int taken = static_cast<int>(std::lround(elapsed / physics::kFixedStep));
+  r.controllerMicrosPerStep = taken ? (sim.controllerSeconds() - controller0) * 1e6 / taken : 0;
+  r.stateHash = sim.stateHash();
+  return r;
+}
+
+}  // namespace gaitlab::sim

@@ -1,0 +1,49 @@
+// One character walking for a while, measured: the walking criteria of the controller issue
+// (speed, heading drift, turn rate, duty factors, falls, pushes survived). Used by the CLI's
+// `walk` subcommand, its WASM twin, the tests and the benchmark.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gait/params.h"
+#include "sim/simulation.h"
+
+namespace gaitlab::sim {
+
+struct WalkOptions {
+  Kind character = Kind::Biped;
+  const gait::GaitParams* params = nullptr;  // nullptr: the character's defaults
+  double speed = 1.0;      // goal speed, m/s
+  double turnRate = 0.0;   // goal turn rate, rad/s
+  double seconds = 20.0;   // simulated
+  std::string terrain = "flat";
+  double pushImpulse = 0.0;  // N·s, lateral, at the leg frame; 0 = no pushes
+  double pushEvery = 0.0;    // s between pushes (the first after 2 s); phase jittered by the seed
+  uint32_t seed = 1;
+  bool trace = false;  // record the leg frame's path every 0.1 s
+};
+
+struct WalkResult {
+  bool fell = false;
+  double fallTime = -1;         // s, -1 if it never fell
+  double distance = 0;          // m, horizontal, start to end (or to the fall)
+  double meanSpeed = 0;         // m/s, horizontal, over the second half of the run
+  double goalSpeed = 0;
+  double headingDrift = 0;      // degrees: |final heading − start heading − turnRate·t|
+  double yawRate = 0;           // rad/s, mean over the second half
+  std::vector<double> dutyMeasured, dutyConfig;
+  int pushesApplied = 0, pushesSurvived = 0;
+  double controllerMicrosPerStep = 0;  // controller only, one character
+  double seconds = 0;
+  std::string stateHash;
+  std::vector<double> trace;  // x, y, z, heading every 0.1 s when requested
+};
+
+WalkResult runWalk(const WalkOptions& options);
+
+// Fall criterion (controller issue): the leg frame below half its standing height above the
+// ground, or tilted more than 60° from upright.
+bool hasFallen(const Simulation& sim, int character);
+
+}  // namespace gaitlab::sim

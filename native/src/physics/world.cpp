@@ -16,6 +16,10 @@ World::World()
       dynamics_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
                                                           solver_.get(), config_.get())) {
   dynamics_->setGravity(btVector3(0, -9.81f, 0));
+  // A character's trunk weighs 30-60 times its foot; sequential impulses converge slowly across
+  // such mass ratios (see kPhysicsSubsteps for the rest of the story).
+  dynamics_->getSolverInfo().m_numIterations = kSolverIterations;
+
   // Ground: a static plane at y = 0 (slopes and bumps come with the terrain option).
   shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0));
   btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
@@ -74,8 +78,8 @@ void World::removeBody(btRigidBody* body) {
 }
 
 void World::step() {
-  dynamics_->stepSimulation(static_cast<btScalar>(kFixedStep), 0,
-                            static_cast<btScalar>(kFixedStep));
+  const auto h = static_cast<btScalar>(kFixedStep / kPhysicsSubsteps);
+  for (int i = 0; i < kPhysicsSubsteps; ++i) dynamics_->stepSimulation(h, 0, h);
 }
 
 bool World::groundHeight(double x, double z, double* height, Eigen::Vector3d* normal) const {

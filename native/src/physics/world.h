@@ -24,8 +24,17 @@ constexpr int kGroundMask = kPropGroup | kCharacterGroup;
 constexpr int kPropMask = kGroundGroup | kPropGroup | kCharacterGroup;
 constexpr int kCharacterMask = kGroundGroup | kPropGroup;
 
-// The fixed simulation step (thesis §3.2: Bullet at 120 Hz).
+// Sequential-impulse iterations per step (Bullet's default is 10; see World::World).
+constexpr int kSolverIterations = 40;
+
+// The fixed simulation step (thesis §3.2: Bullet at 120 Hz): the controller runs once per step.
 constexpr double kFixedStep = 1.0 / 120.0;
+
+// Bullet sub-steps per fixed step. Measured: with one 1/120 s step, a biped standing on one leg
+// under the controller's torques pushed its foot 6 cm into the ground within 0.1 s (whatever the
+// solver iterations, ERP or split impulse), while a passive one stood still; with two 1/240 s
+// sub-steps the foot stays within 1 mm. The controller still runs at 120 Hz, as in the thesis.
+constexpr int kPhysicsSubsteps = 2;
 
 class World {
  public:
@@ -42,7 +51,8 @@ class World {
                       int group, int mask, double friction);
   void removeBody(btRigidBody* body);
 
-  // One fixed step of kFixedStep seconds (no sub-stepping, no interpolation: deterministic).
+  // One fixed step of kFixedStep seconds, as kPhysicsSubsteps Bullet steps (no interpolation:
+  // deterministic).
   void step();
 
   // Height of the ground (and anything static) below (x, z), by a downward ray cast.

@@ -49,6 +49,8 @@ class Simulation {
   double physicsSeconds() const { return physicsSeconds_; }
   gait::Controller& controller(int i) { return agents_[i]->controller; }
   const gait::Controller& controller(int i) const { return agents_[i]->controller; }
+  // The joint torques the controller wrote in the last step (controller.h convention).
+  const std::vector<Eigen::Vector3d>& lastTorques(int i) const { return agents_[i]->torques; }
   // Steering (beyond the thesis): one character, or all with i = -1.
   void setGoal(int i, const gait::Goal& goal);
 

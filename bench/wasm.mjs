@@ -1,0 +1,28 @@
+#!/usr/bin/env node
+// Runs the gaitlab CLI compiled to WebAssembly under Node: `node bench/wasm.mjs walk ...` takes
+// the same arguments and prints the same JSON as build/native/gaitlab, so native and WASM can be
+// compared in one run (DESIGN.md, contracts).
+import { createRequire } from 'node:module';
+import { readFileSync, existsSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import path from 'node:path';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const js = path.join(root, 'build/wasm/gaitlab-node.cjs');
+const wasm = path.join(root, 'build/wasm/gaitlab-node.wasm');
+if (!existsSync(js) || !existsSync(wasm)) {
+  console.error('gaitlab: the WebAssembly build is missing (build/wasm); run `npm run build` first');
+  process.exit(1);
+}
+const createGaitlab = createRequire(import.meta.url)(js);
+// Emscripten 3.1.6's loader breaks on Node's global fetch: hand it the binary instead.
+const Module = await createGaitlab({ wasmBinary: readFileSync(wasm), noExitRuntime: true });
+let status;
+try {
+  status = Module.callMain(process.argv.slice(2));
+} catch (e) {
+  status = typeof e?.status === 'number' ? e.status : 1;
+  if (typeof e?.status !== 'number') console.error(e);
+}
+Module.PThread.terminateAllThreads();
+process.exit(status ?? 0);

@@ -1,0 +1,62 @@
+// The `gaitlab` CLI natively and as WebAssembly under Node (bench/wasm.mjs): the same
+// arguments give the same JSON document; bad input is refused on stderr with a non-zero exit.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+import path from 'node:path';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const native = path.join(root, 'build/native/gaitlab');
+const wasm = ['bench/wasm.mjs'];
+
+function run(cmd, args) {
+  const r = spawnSync(cmd, args, { cwd: root, encoding: 'utf8', timeout: 120_000 });
+  return { status: r.status, stdout: r.stdout, stderr: r.stderr };
+}
+
+const walkArgs = ['walk', '--character', 'quadruped', '--seconds', '1', '--speed', '0.8', '--json'];
+const keys = ['fell', 'fall_time_s', 'distance_m', 'mean_speed_m_s', 'goal_speed_m_s',
+  'heading_drift_deg', 'yaw_rate_rad_s', 'duty_factor_measured', 'duty_factor_config',
+  'pushes_applied', 'pushes_survived', 'controller_us_per_step'];
+
+test('native and WASM `walk` print the same JSON document shape', () => {
+  const a = run(native, walkArgs);
+  const b = run(process.execPath, [...wasm, ...walkArgs]);
+  assert.equal(a.status, 0, a.stderr);
+  assert.equal(b.status, 0, b.stderr);
+  const ja = JSON.parse(a.stdout);
+  const jb = JSON.parse(b.stdout);
+  for (const k of keys) {
+    assert.ok(k in ja, `native output lacks ${k}`);
+    assert.ok(k in jb, `wasm output lacks ${k}`);
+  }
+  assert.deepEqual(Object.keys(ja).sort(), Object.keys(jb).sort());
+  assert.equal(ja.goal_speed_m_s, 0.8);
+  assert.equal(ja.duty_factor_config.length, 4, 'a quadruped has four legs');
+  assert.ok(ja.controller_us_per_step > 0 && jb.controller_us_per_step > 0);
+});
+
+test('--version works natively and as WASM', () => {
+  assert.match(run(native, ['--version']).stdout, /^gaitlab \d+\.\d+\.\d+/);
+  assert.match(run(process.execPath, [...wasm, '--version']).stdout, /^gaitlab \d+\.\d+\.\d+/);
+});
+
+for (const [args, message] of [
+  [['walk', '--character', 'horse'], /--character: 'horse' is not biped or quadruped/],
+  [['walk', '--speed', 'fast'], /--speed: 'fast' is not a number/],
+  [['walk', '--seconds', 'nan'], /--seconds: 'nan' is not a number/],
+  [['walk', '--speed', '99'], /--speed: 99 is outside/],
+  [['walk', '--bogus'], /unknown option '--bogus'/],
+  [['walk', '--seed'], /option --seed needs a value/],
+  [['fly'], /unknown command 'fly'/],
+]) {
+  test(`refuses ${args.join(' ')}`, () => {
+    for (const [cmd, pre] of [[native, []], [process.execPath, wasm]]) {
+      const r = run(cmd, [...pre, ...args]);
+      assert.notEqual(r.status, 0);
+      assert.match(r.stderr, message);
+      assert.equal(r.stdout, '');
+    }
+  });
+}

@@ -72,3 +72,12 @@ TEST(CApi, CreatesStepsAndDestroys) {
   EXPECT_EQ(std::string(gl_sim_state_hash(s)).size(), 16u);
   gl_sim_destroy(s);
 }
+
+TEST(CApi, ThreadCountIsClampedToWhatTheWasmPoolCanStart) {
+  void* s = gl_sim_create(64, 1);
+  EXPECT_EQ(gl_sim_threads(s), GL_MAX_THREADS);
+  gl_sim_destroy(s);
+  s = gl_sim_create(0, 1);
+  EXPECT_EQ(gl_sim_threads(s), 1);
+  gl_sim_destroy(s);
+}

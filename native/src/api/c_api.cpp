@@ -17,7 +17,11 @@ extern "C" {
 
 const char* gl_version(void) { return GAITLAB_VERSION; }
 
-void* gl_sim_create(int threads, uint32_t seed) { return new Simulation(threads, seed); }
+void* gl_sim_create(int threads, uint32_t seed) {
+  if (threads < 1) threads = 1;
+  if (threads > GL_MAX_THREADS) threads = GL_MAX_THREADS;
+  return new Simulation(threads, seed);
+}
 
 void gl_sim_destroy(void* s) { delete sim(s); }
 

@@ -19,8 +19,14 @@ extern "C" {
 // Library version, "MAJOR.MINOR.PATCH".
 GL_EXPORT const char* gl_version(void);
 
-// A new simulation: flat ground, nothing on it. `threads` >= 1 is the size of the thread pool
-// used for per-character work (1 = serial). `seed` drives every random choice of the scene.
+// Most threads a simulation uses: the WASM build pre-starts GL_MAX_THREADS - 1 pthread workers
+// (PTHREAD_POOL_SIZE), and a thread beyond them could not start while the browser's sim worker
+// is busy stepping. Thread counts above the hardware's are allowed (the thesis ran 2-4).
+#define GL_MAX_THREADS 5
+
+// A new simulation: flat ground, nothing on it. `threads` is the size of the thread pool used for
+// per-character work, clamped to [1, GL_MAX_THREADS] (gl_sim_threads tells the count in use).
+// `seed` drives every random choice of the scene.
 GL_EXPORT void* gl_sim_create(int threads, uint32_t seed);
 GL_EXPORT void gl_sim_destroy(void* sim);
 

@@ -1,0 +1,120 @@
+// Typed access to the gaitlab WASM module (native/src/api/c_api.h) from JavaScript.
+//
+// The module is Emscripten 3.1.6 output: `gaitlab.mjs` default-exports a factory that resolves
+// to the Module object. Its memory is fixed-size and shared (pthreads), so HEAPU8.buffer is a
+// SharedArrayBuffer that stays valid for the module's lifetime.
+
+/** The parts of the Emscripten Module that gaitlab uses. Pointers are byte offsets (numbers). */
+export interface GaitlabModule {
+  HEAPU8: Uint8Array;
+  UTF8ToString(ptr: number): string;
+  _gl_version(): number;
+  _gl_sim_create(threads: number, seed: number): number;
+  _gl_sim_destroy(sim: number): void;
+  _gl_sim_spawn(sim: number, kind: number, x: number, z: number, heading: number): number;
+  _gl_sim_demo_scene(sim: number, characters: number): void;
+  _gl_sim_step(sim: number, steps: number): void;
+  _gl_sim_time(sim: number): number;
+  _gl_sim_step_index(sim: number): number;
+  _gl_sim_body_count(sim: number): number;
+  _gl_sim_threads(sim: number): number;
+  _gl_sim_state_hash(sim: number): number;
+  _gl_sim_render_buffer(sim: number): number;
+}
+
+/** Options the 3.1.6 factory understands that gaitlab passes. */
+export interface GaitlabModuleOptions {
+  print?: (text: string) => void;
+  printErr?: (text: string) => void;
+  /** Called when the module aborts, on any of its threads (a pthread's abort is relayed). */
+  onAbort?: (what: unknown) => void;
+}
+
+export type GaitlabFactory = (options?: GaitlabModuleOptions) => Promise<GaitlabModule>;
+
+/** Kinds for gl_sim_spawn. */
+export const Kind = { biped: 0, quadruped: 1, box: 2 } as const;
+
+/** Loads the ES6 build from `url` (absolute, or relative to the calling module's origin). */
+export async function loadGaitlab(url: string, options: GaitlabModuleOptions = {}): Promise<GaitlabModule> {
+  // Not bundled: the module is a build product served next to its .wasm and pthread worker,
+  // which it finds relative to its own URL.
+  let glue: { default: GaitlabFactory };
+  try {
+    glue = (await import(/* @vite-ignore */ url)) as { default: GaitlabFactory };
+  } catch (error) {
+    const reason = error instanceof Error ? error.message : String(error);
+    throw new Error(`cannot load the WASM module ${url} (${reason}). Is it built? (npm run build)`);
+  }
+  return glue.default(options);
+}
+
+/** The library version string. */
+export function gaitlabVersion(module: GaitlabModule): string {
+  return module.UTF8ToString(module._gl_version());
+}
+
+/** One simulation inside a loaded module; destroy() it when done. */
+export class Simulation {
+  readonly module: GaitlabModule;
+  private handle: number;
+
+  constructor(module: GaitlabModule, threads: number, seed: number) {
+    this.module = module;
+    this.handle = module._gl_sim_create(threads, seed >>> 0);
+    if (!this.handle) throw new Error(`gl_sim_create(${threads}, ${seed}) failed`);
+  }
+
+  private get sim(): number {
+    if (!this.handle) throw new Error('the simulation was destroyed');
+    return this.handle;
+  }
+
+  demoScene(characters: number): void {
+    this.module._gl_sim_demo_scene(this.sim, characters);
+  }
+
+  spawn(kind: number, x: number, z: number, heading: number): number {
+    return this.module._gl_sim_spawn(this.sim, kind, x, z, heading);
+  }
+
+  /** Advances `steps` fixed steps of 1/120 s and publishes render transforms. */
+  step(steps: number): void {
+    this.module._gl_sim_step(this.sim, steps);
+  }
+
+  get time(): number {
+    return this.module._gl_sim_time(this.sim);
+  }
+
+  get stepIndex(): number {
+    // uint32 in C; wasm returns it as a signed i32.
+    return this.module._gl_sim_step_index(this.sim) >>> 0;
+  }
+
+  get bodyCount(): number {
+    return this.module._gl_sim_body_count(this.sim);
+  }
+
+  get threads(): number {
+    return this.module._gl_sim_threads(this.sim);
+  }
+
+  stateHash(): string {
+    return this.module.UTF8ToString(this.module._gl_sim_state_hash(this.sim));
+  }
+
+  /** Byte address of the RenderHeader in module memory (render-buffer.ts reads it). */
+  get renderHeader(): number {
+    return this.module._gl_sim_render_buffer(this.sim);
+  }
+
+  get memory(): ArrayBufferLike {
+    return this.module.HEAPU8.buffer;
+  }
+
+  destroy(): void {
+    if (this.handle) this.module._gl_sim_destroy(this.handle);
+    this.handle = 0;
+  }
+}

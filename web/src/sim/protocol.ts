@@ -1,0 +1,111 @@
+// Messages between the main thread and the sim worker (DESIGN.md, data flow step 1).
+//
+// Only control traffic goes through postMessage: commands one way, lifecycle and statistics the
+// other. Render transforms never do: the worker sends the WASM memory (a SharedArrayBuffer) and
+// the render-header pointer once per scene, and the main thread reads every frame straight out of
+// that memory (data flow step 3, see render-buffer.ts).
+
+/** How the worker should set up the simulation. */
+export interface SimOptions {
+  /** URL of the ES6 WASM glue (gaitlab.mjs); its .wasm and pthread worker sit next to it. */
+  wasmUrl: string;
+  /** Size of the simulation's thread pool (1 = serial). */
+  threads: number;
+  /** Seed of every random choice of the scene. */
+  seed: number;
+  /** Characters in the demo scene. */
+  characters: number;
+}
+
+/** Main thread → sim worker. */
+export type SimCommand =
+  | { type: 'init'; options: SimOptions }
+  | { type: 'pause' }
+  | { type: 'resume' }
+  /**
+   * Rebuild the demo scene from the same seed: a new simulation, so a new render buffer. The
+   * worker first asks the main thread to let go of the old one (event `release`).
+   */
+  | { type: 'reset' }
+  /** Answer to `release`: the main thread no longer reads `generation`'s render buffer. */
+  | { type: 'released'; generation: number };
+
+/** Statistics the worker reports a few times a second. */
+export interface SimStats {
+  generation: number;
+  simTime: number;
+  stepIndex: number;
+  bodies: number;
+  threads: number;
+  paused: boolean;
+  /** Mean wall-clock milliseconds per fixed step (one gl_sim_step call covers several). */
+  stepMs: number;
+  /** Fixed steps dropped since the last report because the machine could not keep up. */
+  droppedSteps: number;
+}
+
+/** Sim worker → main thread. */
+export type SimEvent =
+  | {
+      /** A (new) simulation exists; render from this memory and header from now on. */
+      type: 'ready';
+      generation: number;
+      memory: SharedArrayBuffer;
+      /** Byte offset of the RenderHeader in `memory`. */
+      header: number;
+      threads: number;
+      version: string;
+    }
+  /**
+   * Stop reading `generation`'s render buffer and answer `released`: the worker is about to free
+   * it. Only one simulation exists at a time, so the module's fixed pthread pool is never
+   * exceeded (a pthread beyond the pool would not start while the worker blocks in a step).
+   */
+  | { type: 'release'; generation: number }
+  | ({ type: 'stats' } & SimStats)
+  | { type: 'error'; message: string };
+
+/**
+ * Most threads a simulation may use in the browser. The module starts a fixed pool of 4 pthread
+ * workers (PTHREAD_POOL_SIZE, native/CMakeLists.txt) and a simulation on T threads takes T − 1 of
+ * them; a pthread beyond the pool would need a new Worker, which cannot start while the sim
+ * worker blocks in a step — the simulation would hang.
+ */
+export const MAX_THREADS = 4;
+
+/** The thread count the demo uses: one per core, at most MAX_THREADS (and at least 1). */
+export function defaultThreads(hardwareConcurrency: number | undefined): number {
+  const cores = Number.isFinite(hardwareConcurrency) ? Math.floor(hardwareConcurrency as number) : 1;
+  return Math.max(1, Math.min(cores, MAX_THREADS));
+}
+
+/**
+ * Simulation options from the page's query string, e.g. `?threads=1&seed=7&characters=12`.
+ * Values out of range or not integers are ignored in favour of the defaults.
+ */
+export function simOptionsFromQuery(search: string, defaults: SimOptions): SimOptions {
+  const query = new URLSearchParams(search);
+  const int = (name: string, min: number, max: number, fallback: number): number => {
+    const raw = query.get(name);
+    if (raw === null || !/^\d+$/.test(raw.trim())) return fallback;
+    const value = Number(raw);
+    return value >= min && value <= max ? value : fallback;
+  };
+  return {
+    wasmUrl: defaults.wasmUrl,
+    threads: int('threads', 1, MAX_THREADS, defaults.threads),
+    seed: int('seed', 0, 0xffffffff, defaults.seed),
+    characters: int('characters', 0, 256, defaults.characters),
+  };
+}
+
+/** A readable message from anything thrown (Emscripten aborts throw strings or numbers too). */
+export function errorMessage(error: unknown): string {
+  if (error instanceof Error) return `${error.name}: ${error.message}`;
+  if (typeof error === 'string') return error;
+  try {
+    return JSON.stringify(error) ?? String(error);
+  } catch {
+    return String(error);
+  }
+}

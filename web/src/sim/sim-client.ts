@@ -1,0 +1,87 @@
+// Main-thread side of the sim worker: starts it, sends typed commands, and keeps the newest
+// statistics and render-buffer reader. It never steps anything itself (DESIGN.md, data flow).
+import { errorMessage, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
+import { RenderBufferReader } from './render-buffer';
+
+export interface SimClientEvents {
+  /** A new scene's render buffer is ready to be drawn (after start and after every reset). */
+  onScene?: (reader: RenderBufferReader, info: { generation: number; threads: number; version: string }) => void;
+  /** The current render buffer is about to be freed: stop reading it, synchronously. */
+  onRelease?: () => void;
+  onStats?: (stats: SimStats) => void;
+  onError?: (message: string) => void;
+}
+
+export class SimClient {
+  private readonly worker: Worker;
+  private readonly events: SimClientEvents;
+  /** The render buffer being drawn, or null before the first scene. */
+  reader: RenderBufferReader | null = null;
+  stats: SimStats | null = null;
+  error: string | null = null;
+
+  constructor(options: SimOptions, events: SimClientEvents) {
+    this.events = events;
+    // Vite recognises this pattern and bundles the worker as a module worker of its own.
+    this.worker = new Worker(new URL('./sim.worker.ts', import.meta.url), { type: 'module', name: 'gaitlab-sim' });
+    this.worker.onmessage = (event: MessageEvent<SimEvent>) => this.receive(event.data);
+    this.worker.onerror = (event) => {
+      event.preventDefault();
+      this.fail(event.message || 'the sim worker failed to start (see the browser console)');
+    };
+    this.worker.onmessageerror = () => this.fail('a message from the sim worker could not be read');
+    this.send({ type: 'init', options });
+  }
+
+  send(command: SimCommand): void {
+    this.worker.postMessage(command);
+  }
+
+  pause(): void {
+    this.send({ type: 'pause' });
+  }
+
+  resume(): void {
+    this.send({ type: 'resume' });
+  }
+
+  reset(): void {
+    this.send({ type: 'reset' });
+  }
+
+  private receive(event: SimEvent): void {
+    switch (event.type) {
+      case 'ready':
+        try {
+          this.reader = new RenderBufferReader(event.memory, event.header);
+        } catch (error) {
+          this.fail(errorMessage(error));
+          return;
+        }
+        this.events.onScene?.(this.reader, event);
+        return;
+      case 'release':
+        // After this returns nothing on this thread reads the old buffer (one thread, no awaits).
+        this.reader = null;
+        this.events.onRelease?.();
+        this.send({ type: 'released', generation: event.generation });
+        return;
+      case 'stats':
+        this.stats = event;
+        this.events.onStats?.(event);
+        return;
+      case 'error':
+        this.fail(event.message);
+        return;
+      default: {
+        const unknown: never = event;
+        this.fail(`unknown message from the sim worker: ${JSON.stringify(unknown)}`);
+      }
+    }
+  }
+
+  private fail(message: string): void {
+    this.error = message;
+    this.events.onError?.(message);
+  }
+}

@@ -6,9 +6,12 @@
 #   3. Bullet 3.24 source, from Debian's source package, verified by sha256
 #
 # Called by `npm start`, `npm test`, `npm run build` and `npm run bench`.
+# `scripts/setup.sh bullet` runs only step 3 (the tests use it on a scratch folder).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib.sh
+steps=${*:-packages npm bullet}
+want() { [[ " $steps " == *" $1 "* ]]; }
 
 # ---------------------------------------------------------------------------------------------
 # 1. System packages. Each entry: the command (or file) that proves it is there, the Debian
@@ -30,6 +33,7 @@ need=(
 
 missing_pkgs=()
 missing_help=()
+want packages || need=()
 for entry in "${need[@]}"; do
   probe=${entry%%|*}; rest=${entry#*|}; pkg=${rest%%|*}; help=${rest#*|}
   case $probe in
@@ -62,7 +66,7 @@ fi
 # 2. npm dependencies: `npm ci` only when package-lock.json changed since the last install.
 # ---------------------------------------------------------------------------------------------
 lock_sum=$(sha256sum package-lock.json | cut -d' ' -f1)
-if [ "$(cat node_modules/.gaitlab-lock-sha256 2>/dev/null || true)" != "$lock_sum" ]; then
+if want npm && [ "$(cat node_modules/.gaitlab-lock-sha256 2>/dev/null || true)" != "$lock_sum" ]; then
   say "installing npm dependencies (npm ci)"
   npm ci --no-audit --no-fund --loglevel=error
   echo "$lock_sum" > node_modules/.gaitlab-lock-sha256
@@ -74,10 +78,11 @@ fi
 # ---------------------------------------------------------------------------------------------
 BULLET_TARBALL=bullet_3.24+dfsg.orig.tar.xz
 BULLET_SHA256=43c1edae2024ba18bb5d7bfd3bb2394b066a79151a29789504a2d8efcdc333d7
-BULLET_DIR=third_party/bullet3
-mkdir -p third_party
-if [ ! -f "$BULLET_DIR/.verified" ]; then
-  tarball=third_party/$BULLET_TARBALL
+THIRD_PARTY=${GAITLAB_THIRD_PARTY:-third_party}
+BULLET_DIR=$THIRD_PARTY/bullet3
+mkdir -p "$THIRD_PARTY"
+if want bullet && [ ! -f "$BULLET_DIR/.verified" ]; then
+  tarball=$THIRD_PARTY/$BULLET_TARBALL
   if [ ! -f "$tarball" ]; then
     # The mirror is the one this machine's apt already uses (Debian's pool layout is the same
     # on every mirror); BULLET_MIRROR overrides it.
@@ -96,9 +101,9 @@ if [ ! -f "$BULLET_DIR/.verified" ]; then
   got      $got
 Run the command again to download it afresh."
   fi
-  rm -rf "$BULLET_DIR" third_party/bullet3-3.24
-  tar -xJf "$tarball" -C third_party
-  mv third_party/bullet3-3.24 "$BULLET_DIR"
+  rm -rf "$BULLET_DIR" "$THIRD_PARTY/bullet3-3.24"
+  tar -xJf "$tarball" -C "$THIRD_PARTY"
+  mv "$THIRD_PARTY/bullet3-3.24" "$BULLET_DIR"
   echo "$BULLET_SHA256" > "$BULLET_DIR/.verified"
   say "Bullet 3.24 unpacked and verified in $BULLET_DIR"
 fi

@@ -6,6 +6,7 @@
 #   types    TypeScript type check of web/
 #   web      Vitest unit tests (tests/web)
 #   wasm     the WebAssembly module in Node with its thread pool (tests/wasm, node:test)
+#   setup    the Bullet download and its checksum (tests/setup, node:test)
 #   e2e      the demo page in headless Chromium (tests/e2e, node:test + playwright-core)
 #
 # GAITLAB_SUITES="native web" runs a subset.
@@ -13,7 +14,7 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib.sh
 
-suites=${GAITLAB_SUITES:-native types web wasm e2e}
+suites=${GAITLAB_SUITES:-native types web wasm setup e2e}
 out=test-results
 mkdir -p "$out"
 passed=0
@@ -72,6 +73,7 @@ for suite in $suites; do
       count web "$p" "$f" "$st"
       ;;
     wasm) run_node_test wasm tests/wasm ;;
+    setup) run_node_test setup tests/setup ;;
     e2e) run_node_test e2e tests/e2e ;;
     *) fail "unknown test suite '$suite'" ;;
   esac

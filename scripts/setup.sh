@@ -5,7 +5,7 @@
 #   2. npm dependencies, from the committed package-lock.json
 #   3. Bullet 3.24 source, from Debian's source package, verified by sha256
 #
-# Called by `npm start`, `npm test`, `npm run build` and `npm run bench`.
+# Called by `npm start`, `npm test` and `npm run build`.
 # `scripts/setup.sh bullet` runs only step 3 (the tests use it on a scratch folder).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -49,16 +49,13 @@ Controller::Controller(const body::Morphology& morphology, const GaitParams& par
                        double heading)
     : m_(morphology), params_(params), desiredHeading_(heading) {
   for (const body::Leg& leg : m_.legs) {
-    const body::Segment& frame = m_.segments[leg.legFrame];
     const body::Segment& upper = m_.segments[leg.upper];
     const body::Segment& lower = m_.segments[leg.lower];
     const body::Segment& foot = m_.segments[leg.foot];
     LegGeometry g;
-    g.hipInFrame = upper.joint.pivot - frame.center;
     g.thigh = (lower.joint.pivot - upper.joint.pivot).norm();
     g.shin = (foot.joint.pivot - lower.joint.pivot).norm();
     g.ankleHeight = foot.joint.pivot.y() - (foot.center.y() - foot.halfExtents.y());
-    g.ankleInFoot = foot.joint.pivot - foot.center;
     g.side = upper.joint.pivot.x() >= 0 ? 1.0 : -1.0;
     geometry_.push_back(g);
   }
@@ -134,9 +131,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
       if (leg.legFrame != lf) continue;
       const int li = static_cast<int>(l);
       if (player_.leg(li).events & kLiftOff) {
-        const BodyState& foot = s.segments[leg.foot];
-        liftOff_[l] = foot.position + foot.orientation * geometry_[l].ankleInFoot -
-                      Vector3d(0, geometry_[l].ankleHeight, 0);
+        liftOff_[l] = jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
       }
       if (player_.leg(li).stance) {
         const BodyState& foot = s.segments[leg.foot];
@@ -183,37 +178,19 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
 void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vector3d& force,
                            Vector3d* torques) {
   const body::Leg& leg = m_.legs[l];
-  const LegGeometry& g = geometry_[l];
-  const JointGains& k = params_.gains;
-  const BodyState& frame = s.segments[leg.legFrame];
-  const BodyState& thigh = s.segments[leg.upper];
-  const BodyState& shin = s.segments[leg.lower];
-  const BodyState& foot = s.segments[leg.foot];
 
   // The leg frame is the base, the stance foot the end point: the opposite of the force wanted
   // on the leg frame is applied at the foot (§3.1.4, Figure 3.4).
-  const Vector3d hip = frame.position + frame.orientation * g.hipInFrame;
-  const Vector3d knee = thigh.position + thigh.orientation * Vector3d(0, -g.thigh / 2, 0);
-  const Vector3d ankle = foot.position + foot.orientation * g.ankleInFoot;
-  DofChain chain;
-  chain.push(Vector3d::UnitX(), hip, leg.upper);
-  chain.push(Vector3d::UnitY(), hip, leg.upper);
-  chain.push(Vector3d::UnitZ(), hip, leg.upper);
-  chain.push(thigh.orientation * Vector3d::UnitX(), knee, leg.lower);
-  chain.push(shin.orientation * Vector3d::UnitX(), ankle, leg.foot);
-  chain.push(foot.orientation * Vector3d::UnitZ(), ankle, leg.foot);
-  const Vector3d sole = ankle - Vector3d(0, g.ankleHeight, 0);
+  const DofChain chain = legChain(l, s);
+  const Vector3d sole = jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
   accumulateJointTorques(chain, sole, -force, torques, static_cast<int>(m_.segments.size()));
 
   // Knee: PD towards a slightly bent stance knee (§3.1.4, §3.1.7).
-  const Vector3d kneeAxis = thigh.orientation * Vector3d::UnitX();
-  const double flexion = leg.kneeBend * twistAngle(thigh.orientation.conjugate() * shin.orientation, Vector3d::UnitX());
-  const double rate = leg.kneeBend * (shin.angularVelocity - thigh.angularVelocity).dot(kneeAxis);
-  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, k.stanceKneeFlexion - flexion, -rate) * kneeAxis;
+  kneePd(l, s, params_.gains.stanceKneeFlexion, torques);
 
   // Foot flat until toe-off time, then towards the toe-off angle (§3.1.6).
   const LegParams& lp = params_.legs[l];
-  const LegFrameParams& fp = params_.legFrames[leg.legFrame == m_.legFrames[0] ? 0 : 1];
+  const LegFrameParams& fp = params_.legFrames[legFrameIndex(leg)];
   footPd(l, s, yaw, player_.leg(l).progress > lp.toeOffTime ? fp.toeOffAngle : 0.0, 1.0, torques);
 }
 
@@ -222,8 +199,7 @@ void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vect
   const body::Leg& leg = m_.legs[l];
   const LegGeometry& g = geometry_[l];
   const JointGains& k = params_.gains;
-  const int lfIndex = leg.legFrame == m_.legFrames[0] ? 0 : 1;
-  const LegFrameParams& p = params_.legFrames[lfIndex];
+  const LegFrameParams& p = params_.legFrames[legFrameIndex(leg)];
   const LegParams& lp = params_.legs[l];
   const LegGaitState& state = player_.leg(l);
   const BodyState& frame = s.segments[leg.legFrame];
@@ -243,29 +219,19 @@ void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vect
   const Vector3d ankleTarget = footTarget + Vector3d(0, g.ankleHeight, 0);
 
   // Hip and knee by two-link IK (law of cosines) plus PD (§3.1.4).
-  const Vector3d hip = frame.position + frame.orientation * g.hipInFrame;
+  const Vector3d hip = jointPivot(leg.upper, s);
   const Vector3d forward = headingForward(yaw);
   const TwoLinkIk ik = solveTwoLinkIk(hip, ankleTarget, g.thigh, g.shin, forward * leg.kneeBend);
   const Quaterniond thighWanted = limbOrientation(ik.thighDir, forward);
   torques[leg.upper] += orientationPd(k.hipKp, k.hipKd, thigh.orientation, thighWanted,
                                       thigh.angularVelocity, frame.angularVelocity);
-  const Vector3d kneeAxis = thigh.orientation * Vector3d::UnitX();
-  const double flexion = leg.kneeBend * twistAngle(thigh.orientation.conjugate() * shin.orientation, Vector3d::UnitX());
-  const double rate = leg.kneeBend * (shin.angularVelocity - thigh.angularVelocity).dot(kneeAxis);
-  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, ik.kneeFlexion - flexion, -rate) * kneeAxis;
+  kneePd(l, s, ik.kneeFlexion, torques);
 
   // Swing virtual force F_sw with gain k_ft(ϕ), K_d = 0.1 K_p (§3.1.4; defect 2), and gravity
   // compensation of the swing leg's segments (§3.1.5), both over the chain leg frame → ankle.
-  const Vector3d knee = thigh.position + thigh.orientation * Vector3d(0, -g.thigh / 2, 0);
-  const Vector3d ankle = foot.position + foot.orientation * g.ankleInFoot;
+  const Vector3d ankle = jointPivot(leg.foot, s);
   const Vector3d ankleVelocity = shin.linearVelocity + shin.angularVelocity.cross(ankle - shin.position);
-  DofChain chain;
-  chain.push(Vector3d::UnitX(), hip, leg.upper);
-  chain.push(Vector3d::UnitY(), hip, leg.upper);
-  chain.push(Vector3d::UnitZ(), hip, leg.upper);
-  chain.push(kneeAxis, knee, leg.lower);
-  chain.push(shin.orientation * Vector3d::UnitX(), ankle, leg.foot);
-  chain.push(foot.orientation * Vector3d::UnitZ(), ankle, leg.foot);
+  const DofChain chain = legChain(l, s);
   const int n = static_cast<int>(m_.segments.size());
   accumulateJointTorques(chain, ankle,
                          swingFootForce(p.footTrackingGain.eval(phi), ankle, ankleVelocity, ankleTarget),
@@ -278,6 +244,47 @@ void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vect
 
   // Foot: level during swing, to the strike angle after the strike time (§3.1.6).
   footPd(l, s, yaw, phi > lp.strikeTime ? p.strikeAngle : 0.0, 0.5, torques);
+}
+
+int Controller::legFrameIndex(const body::Leg& leg) const {
+  return leg.legFrame == m_.legFrames[0] ? 0 : 1;
+}
+
+Vector3d Controller::jointPivot(int segment, const CharacterState& s) const {
+  // Segments start unrotated in the rest pose, so the pivot's rest offset from the segment's
+  // centre, turned by the segment's orientation, gives the pivot now.
+  const body::Segment& seg = m_.segments[segment];
+  const BodyState& b = s.segments[segment];
+  return b.position + b.orientation * (seg.joint.pivot - seg.center);
+}
+
+DofChain Controller::legChain(int l, const CharacterState& s) const {
+  // A leg's DOFs from the leg frame to the foot (§3.1.2): hip (3), knee (1), ankle (2).
+  const body::Leg& leg = m_.legs[l];
+  const Vector3d hip = jointPivot(leg.upper, s), knee = jointPivot(leg.lower, s),
+                 ankle = jointPivot(leg.foot, s);
+  DofChain chain;
+  chain.push(Vector3d::UnitX(), hip, leg.upper);
+  chain.push(Vector3d::UnitY(), hip, leg.upper);
+  chain.push(Vector3d::UnitZ(), hip, leg.upper);
+  chain.push(s.segments[leg.upper].orientation * Vector3d::UnitX(), knee, leg.lower);
+  chain.push(s.segments[leg.lower].orientation * Vector3d::UnitX(), ankle, leg.foot);
+  chain.push(s.segments[leg.foot].orientation * Vector3d::UnitZ(), ankle, leg.foot);
+  return chain;
+}
+
+void Controller::kneePd(int l, const CharacterState& s, double flexionWanted, Vector3d* torques) {
+  // Knee flexion is the shin's rotation about the thigh's x axis, signed so that bending the
+  // way the knee points is positive (kneeBend), §3.1.4 and §3.1.7.
+  const body::Leg& leg = m_.legs[l];
+  const BodyState& thigh = s.segments[leg.upper];
+  const BodyState& shin = s.segments[leg.lower];
+  const Vector3d axis = thigh.orientation * Vector3d::UnitX();
+  const double flexion =
+      leg.kneeBend * twistAngle(thigh.orientation.conjugate() * shin.orientation, Vector3d::UnitX());
+  const double rate = leg.kneeBend * (shin.angularVelocity - thigh.angularVelocity).dot(axis);
+  const JointGains& k = params_.gains;
+  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, flexionWanted - flexion, -rate) * axis;
 }
 
 void Controller::footPd(int l, const CharacterState& s, double yaw, double pitch, double gainScale,
@@ -309,10 +316,6 @@ void Controller::spine(const CharacterState& s, Vector3d* torques) {
     torques[child] += jointPd(k.spineKp, k.spineKd, pa.orientation, c.orientation,
                               Quaterniond::Identity(), pa.angularVelocity, c.angularVelocity);
   }
-  const auto pivot = [&](int child) {
-    const body::Segment& seg = m_.segments[child];
-    return Vector3d(s.segments[child].position + s.segments[child].orientation * (seg.joint.pivot - seg.center));
-  };
   for (size_t li = 0; li < m_.spine.size(); ++li) {
     const int link = m_.spine[li];
     const SpineWeights w = spineGravityWeights(s.segments[back].position, s.segments[front].position,
@@ -321,7 +324,7 @@ void Controller::spine(const CharacterState& s, Vector3d* torques) {
     DofChain fromFront;
     for (size_t j = 0; j <= li; ++j) {
       const int child = m_.spine[j];
-      const Vector3d b = pivot(child);
+      const Vector3d b = jointPivot(child, s);
       fromFront.push(Vector3d::UnitX(), b, child);
       fromFront.push(Vector3d::UnitY(), b, child);
       fromFront.push(Vector3d::UnitZ(), b, child);
@@ -332,7 +335,7 @@ void Controller::spine(const CharacterState& s, Vector3d* torques) {
     DofChain fromBack;
     for (int j = count - 1; j > static_cast<int>(li); --j) {
       const int child = joints[j];
-      const Vector3d b = pivot(child);
+      const Vector3d b = jointPivot(child, s);
       fromBack.push(Vector3d::UnitX(), b, child, true);
       fromBack.push(Vector3d::UnitY(), b, child, true);
       fromBack.push(Vector3d::UnitZ(), b, child, true);

@@ -9,6 +9,7 @@
 #include "body/morphology.h"
 #include "gait/gait_player.h"
 #include "gait/params.h"
+#include "gait/virtual_force.h"
 
 namespace gaitlab::gait {
 
@@ -58,10 +59,8 @@ class Controller {
 
  private:
   struct LegGeometry {
-    Eigen::Vector3d hipInFrame;  // hip pivot relative to the leg frame's centre, leg-frame axes
     double thigh, shin;          // hip→knee, knee→ankle lengths
     double ankleHeight;          // ankle pivot above the sole
-    Eigen::Vector3d ankleInFoot;  // ankle pivot relative to the foot's centre, foot axes
     double side;                 // +1 left (+x), −1 right
   };
 
@@ -69,6 +68,10 @@ class Controller {
                  Eigen::Vector3d* torques);
   void swingLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& velocity,
                 Eigen::Vector3d* torques);
+  int legFrameIndex(const body::Leg& leg) const;  // 0 front/only, 1 back
+  Eigen::Vector3d jointPivot(int segment, const CharacterState& s) const;  // world, now
+  DofChain legChain(int leg, const CharacterState& s) const;
+  void kneePd(int leg, const CharacterState& s, double flexionWanted, Eigen::Vector3d* torques);
   void footPd(int leg, const CharacterState& s, double yaw, double pitch, double gainScale,
               Eigen::Vector3d* torques);
   void spine(const CharacterState& s, Eigen::Vector3d* torques);

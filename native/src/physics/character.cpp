@@ -98,12 +98,7 @@ SegmentState Character::segmentState(int segment) const {
 namespace gaitlab::physics {
 
 void Character::readState(gait::BodyState* out) const {
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    const btRigidBody* b = bodies_[i];
-    const btTransform& t = b->getCenterOfMassTransform();
-    out[i] = {toEigen(t.getOrigin()), toEigen(t.getRotation()), toEigen(b->getLinearVelocity()),
-              toEigen(b->getAngularVelocity())};
-  }
+  for (size_t i = 0; i < bodies_.size(); ++i) out[i] = segmentState(static_cast<int>(i));
 }
 
 void Character::applyJointTorques(const Eigen::Vector3d* torques) {

@@ -14,13 +14,8 @@ class btTypedConstraint;
 
 namespace gaitlab::physics {
 
-// World-frame state of one segment, as the controller reads it.
-struct SegmentState {
-  Eigen::Vector3d position;  // centre of mass
-  Eigen::Quaterniond orientation;
-  Eigen::Vector3d linearVelocity;   // m/s
-  Eigen::Vector3d angularVelocity;  // rad/s
-};
+// World-frame state of one segment: the controller's own BodyState.
+using SegmentState = gait::BodyState;
 
 class Character {
  public:

@@ -82,19 +82,6 @@ void World::step() {
   for (int i = 0; i < kPhysicsSubsteps; ++i) dynamics_->stepSimulation(h, 0, h);
 }
 
-bool World::groundHeight(double x, double z, double* height, Eigen::Vector3d* normal) const {
-  const btVector3 from(static_cast<btScalar>(x), 100, static_cast<btScalar>(z));
-  const btVector3 to(static_cast<btScalar>(x), -100, static_cast<btScalar>(z));
-  btCollisionWorld::ClosestRayResultCallback hit(from, to);
-  hit.m_collisionFilterGroup = kCharacterGroup;
-  hit.m_collisionFilterMask = kGroundGroup;  // the terrain, not props or characters
-  dynamics_->rayTest(from, to, hit);
-  if (!hit.hasHit()) return false;
-  *height = hit.m_hitPointWorld.y();
-  if (normal) *normal = toEigen(hit.m_hitNormalWorld);
-  return true;
-}
-
 double World::terrainHeight(double x, double z, double fallback) const {
   const btVector3 from(static_cast<btScalar>(x), 100, static_cast<btScalar>(z));
   const btVector3 to(static_cast<btScalar>(x), -100, static_cast<btScalar>(z));

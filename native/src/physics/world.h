@@ -55,12 +55,9 @@ class World {
   // deterministic).
   void step();
 
-  // Height of the ground (and anything static) below (x, z), by a downward ray cast.
-  // Returns false if nothing is hit.
-  bool groundHeight(double x, double z, double* height, Eigen::Vector3d* normal = nullptr) const;
-
-  // The same ray cast against the terrain object alone, without the broadphase, so it is safe to
-  // call from many threads at once (the controller's ground queries). Returns `fallback` if the
+  // Height of the ground below (x, z): a downward ray cast against the terrain object alone,
+  // without the broadphase, so it is safe to call from many threads at once (the controller's
+  // ground queries). Returns `fallback` if the
   // ray misses.
   double terrainHeight(double x, double z, double fallback = 0.0) const;
 

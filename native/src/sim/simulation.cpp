@@ -115,8 +115,7 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   }
   const body::Morphology& m = kind == Kind::Biped ? biped_ : quadruped_;
   if (bodyCount() + static_cast<int>(m.segments.size()) > kRenderCapacity) return -1;
-  double groundY = 0;
-  world_.groundHeight(x, z, &groundY);
+  const double groundY = world_.terrainHeight(x, z);
   agents_.push_back(std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
   const int id = nextId_++;
   const physics::Character& c = *agents_.back()->body;

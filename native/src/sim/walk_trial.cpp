@@ -29,8 +29,7 @@ WalkResult runWalk(const WalkOptions& o) {
   WalkResult r;
   r.goalSpeed = o.speed;
   Simulation sim(1, o.seed);
-  const int id = sim.spawn(o.character, 0, 0, 0);
-  (void)id;
+  sim.spawn(o.character, 0, 0, 0);
   if (o.params) sim.controller(0).setParams(*o.params);
   sim.setGoal(0, {o.speed, o.turnRate});
   const body::Morphology& m = sim.character(0).morphology();
@@ -42,7 +41,7 @@ WalkResult runWalk(const WalkOptions& o) {
   const Eigen::Vector3d start = rootState().position;
   const double startHeading = gait::headingOf(rootState().orientation);
   Eigen::Vector3d halfPos = start;
-  double halfHeading = startHeading, unwrapped = 0, lastHeading = startHeading, halfUnwrapped = 0;
+  double unwrapped = 0, lastHeading = startHeading, halfUnwrapped = 0;
   double nextPush = o.pushEvery > 0 && o.pushImpulse > 0 ? 2.0 : -1;
   double pushPending = -1;  // time of the last push still to be judged
   uint32_t rng = o.seed * 2654435761u + 1;
@@ -75,7 +74,6 @@ WalkResult runWalk(const WalkOptions& o) {
     lastHeading = h;
     if (step + 1 == half) {
       halfPos = s.position;
-      halfHeading = h;
       halfUnwrapped = unwrapped;
     }
     if (o.trace && (step + 1) % 12 == 0) {
@@ -108,7 +106,6 @@ WalkResult runWalk(const WalkOptions& o) {
     r.meanSpeed = std::abs(arc) / secondHalf;
     r.yawRate = turned / secondHalf;
   }
-  (void)halfHeading;
   r.headingDrift = std::abs(unwrapped - o.turnRate * elapsed) * 180.0 / kPi;
   const gait::GaitPlayer& player = sim.controller(0).player();
   for (int l = 0; l < player.legCount(); ++l) {

@@ -3,6 +3,9 @@
 
 #include <string>
 
+#include "gait/defaults.h"
+#include "gait/params_io.h"
+#include "gait/schema.h"
 #include "sim/simulation.h"
 
 using gaitlab::sim::Kind;
@@ -48,5 +51,74 @@ const char* gl_sim_state_hash(void* s) {
 }
 
 const void* gl_sim_render_buffer(void* s) { return sim(s)->renderBuffer(); }
+
+}  // extern "C"
+
+// ---- Gait parameters: schema, presets, gait files ----------------------------------------------
+
+namespace {
+thread_local std::string g_error;  // gl_last_error()
+
+int fail(int code, std::string message) {
+  g_error = std::move(message);
+  return code;
+}
+
+bool characterKind(int kind, gaitlab::gait::Character* c) {
+  if (kind == GL_KIND_BIPED) *c = gaitlab::gait::Character::Biped;
+  else if (kind == GL_KIND_QUADRUPED) *c = gaitlab::gait::Character::Quadruped;
+  else return false;
+  return true;
+}
+}  // namespace
+
+extern "C" {
+
+const char* gl_last_error(void) { return g_error.c_str(); }
+
+const char* gl_schema_json(void) {
+  static const std::string schema = gaitlab::gait::schemaJson();
+  return schema.c_str();
+}
+
+const char* gl_preset_json(int kind) {
+  gaitlab::gait::Character c;
+  return characterKind(kind, &c) ? gaitlab::gait::presetText(c) : nullptr;
+}
+
+int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
+  using namespace gaitlab::gait;
+  Character c;
+  if (!characterKind(kind, &c)) return fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
+  Simulation& simulation = *sim(s);
+  std::vector<int> targets;
+  if (characterId < 0) {
+    for (int i = 0; i < simulation.characterCount(); ++i) {
+      if (characterOf(simulation.character(i).morphology()) == c) targets.push_back(i);
+    }
+    if (targets.empty()) return fail(GL_ERR_NO_CHARACTER, std::string("no ") + characterName(c) + " in the simulation");
+  } else {
+    const int i = simulation.characterIndex(characterId);
+    if (i < 0) return fail(GL_ERR_NO_CHARACTER, "no character with id " + std::to_string(characterId));
+    if (characterOf(simulation.character(i).morphology()) != c)
+      return fail(GL_ERR_KIND, "character " + std::to_string(characterId) + " is not a " + characterName(c));
+    targets.push_back(i);
+  }
+  GaitFile file;
+  if (const auto error = parseGaitFile(text ? text : "", c, &file))
+    return fail(GL_ERR_INVALID_PARAMS, error->describe());
+  for (int i : targets) simulation.controller(i).setParams(file.params);
+  g_error.clear();
+  return GL_OK;
+}
+
+const char* gl_sim_get_params(void* s, int characterId) {
+  using namespace gaitlab::gait;
+  const Simulation& simulation = *sim(s);
+  const int i = simulation.characterIndex(characterId);
+  if (i < 0) return nullptr;
+  g_string = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).params());
+  return g_string.c_str();
+}
 
 }  // extern "C"

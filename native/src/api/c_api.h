@@ -56,6 +56,37 @@ GL_EXPORT const char* gl_sim_state_hash(void* sim);
 // Pointer (byte offset into WASM memory) of the render buffer header, see render_buffer.h.
 GL_EXPORT const void* gl_sim_render_buffer(void* sim);
 
+// ---- Gait parameters: schema, presets, gait files (native/src/gait/schema.h, params_io.h) ----
+//
+// Gait files are JSON: {"format":"gaitlab-gait","version":1,"character":"biped"|"quadruped",
+// "params":{"<name>": number | [4 numbers], ...},"meta":{...}} (public/presets/*.json).
+
+// Error codes of the parameter functions; gl_last_error() gives the message of the last failure
+// on the calling thread ("FIELD: WHAT" for a refused file).
+enum {
+  GL_OK = 0,
+  GL_ERR_INVALID_PARAMS = 1,  // the file was refused (malformed, wrong character, bad field...)
+  GL_ERR_NO_CHARACTER = 2,    // no character with that id, or none of that kind
+  GL_ERR_KIND = 3,            // kind is not GL_KIND_BIPED or GL_KIND_QUADRUPED, or the
+                              // character with that id is of another kind
+};
+GL_EXPORT const char* gl_last_error(void);
+
+// The parameter schema: {"version":1,"characters":{"biped":[...],"quadruped":[...]}}, an entry
+// per parameter {"name","group","min","max","default","unit","description","knots"}.
+GL_EXPORT const char* gl_schema_json(void);
+
+// The shipped preset of a kind, as a gait file; NULL for a kind that is not a character.
+GL_EXPORT const char* gl_preset_json(int kind);
+
+// Validates a gait file for `kind` and gives it to the character with id `characterId` (as
+// returned by gl_sim_spawn), or with characterId = -1 to every character of that kind. Nothing
+// changes unless the whole file is valid. Returns GL_OK or an error code.
+GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char* json);
+
+// The gait parameters a character is using, as a gait file; NULL if there is no such character.
+GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
+
 #ifdef __cplusplus
 }
 #endif

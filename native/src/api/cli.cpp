@@ -5,11 +5,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "gait/defaults.h"
+#include "gait/params_io.h"
+#include "gait/schema.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::api {
@@ -25,9 +29,11 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  walk       one character walks; prints what it achieved (speed, drift, duty factors...)\n"
+    "  schema     prints the gait parameter schema (names, groups, bounds, defaults, units)\n"
     "\n"
     "walk options:\n"
-    "  --character biped|quadruped   (default biped)\n"
+    "  --character biped|quadruped   (default biped, or the --params file's character)\n"
+    "  --params FILE                 gait file (public/presets/*.json format); default: preset\n"
     "  --speed M_S                   goal speed, m/s (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s (default 0)\n"
     "  --seconds S                   simulated time (default 20)\n"
@@ -36,6 +42,10 @@ const char* kUsage =
     "  --push-every S                seconds between pushes (default 4)\n"
     "  --seed N                      (default 1)\n"
     "  --trace                       include the leg frame's path every 0.1 s\n"
+    "  --json                        print one JSON document\n"
+    "\n"
+    "schema options:\n"
+    "  --character biped|quadruped   only this character (default both)\n"
     "  --json                        print one JSON document\n"
     "\n"
     "options:\n"
@@ -94,21 +104,43 @@ struct Options {
   }
 };
 
+// --character, when given, must name a character.
+bool characterOption(Options& o, std::optional<gait::Character>* out) {
+  const auto it = o.values.find("--character");
+  if (it == o.values.end()) return true;
+  *out = gait::characterFromName(it->second);
+  if (!*out) o.error = "--character: '" + it->second + "' is not biped or quadruped";
+  return out->has_value();
+}
+
+// Loads a --params gait file for the character given (or the file's own when none is given).
+// A refused file is reported as "gaitlab: FILE: FIELD: WHAT" (exit status 2).
+int loadParamsOption(const std::string& path, std::optional<gait::Character> expected, gait::GaitFile* file) {
+  if (const auto error = gait::loadGaitFile(path, expected, file)) {
+    std::fprintf(stderr, "gaitlab: %s: %s\n", path.c_str(), error->describe().c_str());
+    return 2;
+  }
+  return 0;
+}
+
 int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
-            {"--character", "--speed", "--turn", "--seconds", "--terrain", "--push-impulse",
-             "--push-every", "--seed"},
+            {"--character", "--params", "--speed", "--turn", "--seconds", "--terrain",
+             "--push-impulse", "--push-every", "--seed"},
             {"--json", "--trace"});
   if (!o.error.empty()) return usageError(o.error);
   sim::WalkOptions w;
-  const std::string character = o.values.count("--character") ? o.values["--character"] : "biped";
-  if (character == "biped") {
-    w.character = sim::Kind::Biped;
-  } else if (character == "quadruped") {
-    w.character = sim::Kind::Quadruped;
-  } else {
-    return usageError("--character: '" + character + "' is not biped or quadruped");
+  std::optional<gait::Character> chosen;
+  if (!characterOption(o, &chosen)) return usageError(o.error);
+  gait::GaitFile file;
+  if (o.values.count("--params")) {
+    if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
+    chosen = file.character;
+    w.params = &file.params;
   }
+  const gait::Character c = chosen.value_or(gait::Character::Biped);
+  const std::string character = gait::characterName(c);
+  w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
   w.terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
   if (w.terrain != "flat") return usageError("--terrain: '" + w.terrain + "' is not flat");
   double seed = 1;
@@ -152,6 +184,19 @@ int walk(int argc, char** argv) {
   return 0;
 }
 
+int schema(int argc, char** argv) {
+  Options o(argc, argv, 2, {"--character"}, {"--json"});
+  std::optional<gait::Character> only;
+  if (!o.error.empty() || !characterOption(o, &only)) return usageError(o.error);
+  const std::string text = gait::schemaJson(only);
+  if (o.flags.count("--json")) {
+    std::printf("%s\n", text.c_str());
+  } else {
+    std::printf("%s\n", nlohmann::ordered_json::parse(text, nullptr, false).dump(2).c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runCli(int argc, char** argv) {
@@ -169,6 +214,7 @@ int runCli(int argc, char** argv) {
     return 0;
   }
   if (cmd == "walk") return walk(argc, argv);
+  if (cmd == "schema") return schema(argc, argv);
   return usageError("unknown command '" + cmd + "'");
 }
 

@@ -118,6 +118,7 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   const double groundY = world_.terrainHeight(x, z);
   agents_.push_back(std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
   const int id = nextId_++;
+  agentIds_.push_back(id);
   const physics::Character& c = *agents_.back()->body;
   for (int i = 0; i < c.segmentCount(); ++i) {
     const body::Segment& s = m.segments[i];
@@ -127,6 +128,11 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
                               s.rgba, id, 0});
   }
   return id;
+}
+
+int Simulation::characterIndex(int id) const {
+  const auto it = std::find(agentIds_.begin(), agentIds_.end(), id);
+  return it == agentIds_.end() ? -1 : static_cast<int>(it - agentIds_.begin());
 }
 
 void Simulation::demoScene(int characters) {

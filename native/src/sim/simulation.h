@@ -40,6 +40,10 @@ class Simulation {
   int bodyCount() const { return static_cast<int>(renderBodies_.size()); }
   int threads() const { return pool_.size(); }
   int characterCount() const { return static_cast<int>(agents_.size()); }
+  // The index (0..characterCount()-1) of the character spawn() returned `id` for, or -1 when
+  // `id` names no character (a box, or nothing spawned).
+  int characterIndex(int id) const;
+  int characterId(int index) const { return agentIds_[index]; }
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }
   double groundHeight(double x, double z) const { return world_.terrainHeight(x, z); }
@@ -83,6 +87,7 @@ class Simulation {
   };
   void control(Agent& agent);
   std::vector<std::unique_ptr<Agent>> agents_;
+  std::vector<int> agentIds_;  // spawn() id of agents_[i]
   std::vector<RenderBody> renderBodies_;
   ThreadPool pool_;
   uint32_t seed_;

@@ -93,6 +93,10 @@ Table build(Character c) {
   // A foot's roll inertia is ~0.003 kg·m²: an explicit PD at 120 Hz needs k_d·dt/I < ~1.
   scalar("gains.ankleKd", kJointGains, {0, 0.3}, "N·m·s/rad", "ankle PD derivative gain",
          g.ankleKd);
+  scalar("gains.stanceAnkleKp", kJointGains, biped ? Bounds{0, 3000} : Bounds{0, 800}, "N·m/rad",
+         "stance ankle PD proportional gain, foot relative to its shin (§3.1.7)", g.stanceAnkleKp);
+  scalar("gains.stanceAnkleKd", kJointGains, biped ? Bounds{0, 40} : Bounds{0, 15}, "N·m·s/rad",
+         "stance ankle PD derivative gain", g.stanceAnkleKd);
   if (!biped) {  // the biped has no spine
     scalar("gains.spineKp", kJointGains, {0, 800}, "N·m/rad",
            "spine PD proportional gain (each of the spine links)", g.spineKp);

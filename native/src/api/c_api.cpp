@@ -1,11 +1,14 @@
 // The C ABI (c_api.h) over sim::Simulation.
 #include "api/c_api.h"
 
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "gait/defaults.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
+#include "optimize/optimizer.h"
 #include "sim/simulation.h"
 
 using gaitlab::sim::Kind;
@@ -119,6 +122,102 @@ const char* gl_sim_get_params(void* s, int characterId) {
   if (i < 0) return nullptr;
   g_string = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).params());
   return g_string.c_str();
+}
+
+}  // extern "C"
+
+// ---- Optimisation, one generation at a time ---------------------------------------------------
+
+namespace {
+struct OptHandle {
+  std::unique_ptr<gaitlab::optimize::Optimizer> optimizer;
+  gaitlab::gait::Character character;
+  std::string text;  // gl_opt_best_json's backing store
+};
+OptHandle* opt(void* handle) { return static_cast<OptHandle*>(handle); }
+}  // namespace
+
+extern "C" {
+
+void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
+                    const char* startJson, const char* settingsJson) {
+  using namespace gaitlab;
+  gait::Character c;
+  if (!characterKind(kind, &c)) {
+    fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
+    return nullptr;
+  }
+  optimize::SearchOptions o;
+  o.character = c;
+  o.method = method == 1 ? optimize::Method::CmaEs : optimize::Method::Greedy;
+  o.candidates = candidates < 2 ? 2 : candidates;
+  o.seed = seed;
+  o.threads = threads < 1 ? 1 : threads > GL_MAX_THREADS ? GL_MAX_THREADS : threads;
+  gait::GaitFile start;
+  start.params = gait::defaultParams(c);
+  if (startJson) {
+    if (const auto error = gait::parseGaitFile(startJson, c, &start)) {
+      fail(GL_ERR_INVALID_PARAMS, error->describe());
+      return nullptr;
+    }
+  }
+  if (settingsJson) {
+    const nlohmann::json j = nlohmann::json::parse(settingsJson, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) {
+      fail(GL_ERR_INVALID_PARAMS, "objective settings: expected a JSON object");
+      return nullptr;
+    }
+    for (const auto& item : j.items()) {
+      if (item.key() == "speeds") {
+        o.objective.speeds.clear();
+        for (const auto& v : item.value()) {
+          if (!v.is_number()) {
+            fail(GL_ERR_INVALID_PARAMS, "speeds: expected numbers");
+            return nullptr;
+          }
+          o.objective.speeds.push_back(v.get<double>());
+        }
+        if (!item.value().is_array() || o.objective.speeds.empty()) {
+          fail(GL_ERR_INVALID_PARAMS, "speeds: expected a non-empty array of numbers");
+          return nullptr;
+        }
+        continue;
+      }
+      const std::string error = item.value().is_number()
+                                    ? optimize::setSetting(o.objective, item.key(), item.value().get<double>())
+                                    : item.key() + ": expected a number";
+      if (!error.empty()) {
+        fail(GL_ERR_INVALID_PARAMS, error);
+        return nullptr;
+      }
+    }
+  }
+  g_error.clear();
+  return new OptHandle{optimize::Optimizer::create(o, start.params), c, {}};
+}
+
+void gl_opt_destroy(void* h) { delete opt(h); }
+
+double gl_opt_step(void* h) { return opt(h)->optimizer->step().bestObjective; }
+
+int gl_opt_generation(void* h) { return opt(h)->optimizer->generation(); }
+
+int gl_opt_evaluations(void* h) { return opt(h)->optimizer->evaluations(); }
+
+const char* gl_opt_best_json(void* h) {
+  using namespace gaitlab;
+  const optimize::Optimizer& o = *opt(h)->optimizer;
+  const optimize::ObjectiveTerms& t = o.bestTerms();
+  const nlohmann::json meta = {
+      {"source", "gaitlab optimize (gl_opt)"},
+      {"method", optimize::methodName(o.options().method)},
+      {"seed", o.options().seed},
+      {"objective", o.bestObjective()},
+      {"objective_terms", {{"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"fall", t.fall}}},
+      {"generations", o.generation()},
+      {"evaluations", o.evaluations()}};
+  opt(h)->text = gait::gaitFileJson(opt(h)->character, o.best(), o.generation() ? meta : nlohmann::json::object());
+  return opt(h)->text.c_str();
 }
 
 }  // extern "C"

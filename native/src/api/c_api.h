@@ -87,6 +87,27 @@ GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char
 // The gait parameters a character is using, as a gait file; NULL if there is no such character.
 GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
 
+// ---- Optimisation, one generation at a time (native/src/optimize/optimizer.h) ----------------
+//
+// For the browser's optimize panel: create a search, call gl_opt_step once per generation (each
+// runs `candidates` evaluations, a few tenths of a second to seconds), read the best so far.
+
+// A new search. `kind` is GL_KIND_BIPED or GL_KIND_QUADRUPED; `method` 0 = greedy (thesis §3.3),
+// 1 = CMA-ES; `start_json` a gait file to start from, or NULL for the preset; `settings_json`
+// NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,...}, see
+// optimize/objective.h). `threads` is clamped to [1, GL_MAX_THREADS]. Returns NULL on error
+// (gl_last_error() says why).
+GL_EXPORT void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
+                              const char* start_json, const char* settings_json);
+GL_EXPORT void gl_opt_destroy(void* opt);
+// Runs one generation; returns the best objective so far.
+GL_EXPORT double gl_opt_step(void* opt);
+GL_EXPORT int gl_opt_generation(void* opt);
+GL_EXPORT int gl_opt_evaluations(void* opt);
+// The best parameters so far as a gait file (meta: method, seed, objective, its terms,
+// generations, evaluations). Valid until the next call on this handle.
+GL_EXPORT const char* gl_opt_best_json(void* opt);
+
 #ifdef __cplusplus
 }
 #endif

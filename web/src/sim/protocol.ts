@@ -13,9 +13,57 @@ export interface SimOptions {
   threads: number;
   /** Seed of every random choice of the scene. */
   seed: number;
-  /** Characters in the demo scene. */
+  /** Characters in the demo scene: a mixed crowd, bipeds and quadrupeds alternating. */
   characters: number;
 }
+
+export type Vec3 = [number, number, number];
+export type CharacterType = 'biped' | 'quadruped';
+
+/**
+ * Commands that change the running scene. The worker queues them and applies them at the start
+ * of the next fixed step, logging each with that step's index (DESIGN.md, data flow step 1), so
+ * a run can be replayed from (seed, scene, command log). While paused they apply at once, which
+ * is the same thing: no step happens in between.
+ */
+export type SceneCommand =
+  /** Steering goal of one character, or of all: forward speed (m/s) and turn rate (rad/s, + = left). */
+  | { type: 'setGoal'; id: number | 'all'; speed: number; turn: number }
+  /** A box of half size `half` (m) from `from` with `velocity` (m/s). */
+  | { type: 'throwBox'; from: Vec3; velocity: Vec3; half: number }
+  /** Holds point `local` (segment frame) of segment `segment` of character `id` on a spring to `target`. */
+  | { type: 'drag'; id: number; segment: number; local: Vec3; target: Vec3 }
+  | { type: 'endDrag' }
+  /** Respawns character `id` standing where it is, with its gait and goal. */
+  | { type: 'resetCharacter'; id: number }
+  /** Respawns every character that is down. */
+  | { type: 'resetFallen' }
+  | { type: 'remove'; id: number }
+  /** `count` new characters on the next free places of the crowd's grid. */
+  | { type: 'add'; kind: CharacterType; count: number }
+  /** Characters down for this long are reset automatically; 0 = never. */
+  | { type: 'autoReset'; seconds: number };
+
+/** One character as the worker last saw it (gl_sim_character_info). */
+export interface CharacterStatus {
+  id: number;
+  type: CharacterType;
+  /** Root leg frame's centre, metres. */
+  position: Vec3;
+  /** Radians about +y; 0 faces +z. */
+  heading: number;
+  /** Horizontal speed of the root leg frame, m/s. */
+  speed: number;
+  fallen: boolean;
+  fallenSeconds: number;
+  goal: { speed: number; turn: number };
+  /** Gait phase in [0, 1). */
+  phase: number;
+}
+
+/** Slow motion: simulated seconds per wall-clock second the worker's clock aims for. */
+export const TIME_SCALES = [1, 0.5, 0.25] as const;
+export type TimeScale = (typeof TIME_SCALES)[number];
 
 /** Main thread → sim worker. */
 export type SimCommand =
@@ -28,7 +76,11 @@ export type SimCommand =
    */
   | { type: 'reset' }
   /** Answer to `release`: the main thread no longer reads `generation`'s render buffer. */
-  | { type: 'released'; generation: number };
+  | { type: 'released'; generation: number }
+  /** One fixed step, when paused. */
+  | { type: 'step' }
+  | { type: 'timeScale'; scale: TimeScale }
+  | { type: 'scene'; command: SceneCommand };
 
 /** Statistics the worker reports a few times a second. */
 export interface SimStats {
@@ -42,6 +94,10 @@ export interface SimStats {
   stepMs: number;
   /** Fixed steps dropped since the last report because the machine could not keep up. */
   droppedSteps: number;
+  timeScale: TimeScale;
+  characters: CharacterStatus[];
+  /** Scene commands applied so far (the command log's length). */
+  commandsApplied: number;
 }
 
 /** Sim worker → main thread. */

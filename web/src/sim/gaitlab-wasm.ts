@@ -191,6 +191,45 @@ export class Simulation {
     return this.module.HEAPF64.slice(start, start + Math.min(n, count) * INFO.fields);
   }
 
+  // ---- Gait parameters (the schema issue's C API; absent from builds before it) ----
+
+  private requireSchema(): void {
+    if (!this.module._gl_sim_get_params) throw new Error('this build of the module has no parameter schema');
+  }
+
+  private lastError(): string {
+    return this.module._gl_last_error ? this.module.UTF8ToString(this.module._gl_last_error()) : 'unknown error';
+  }
+
+  /** Character `id`'s parameters as a gait file's JSON. */
+  getParams(id: number): string {
+    this.requireSchema();
+    const pointer = this.module._gl_sim_get_params!(this.sim, id);
+    if (!pointer) throw new Error(this.lastError());
+    return this.module.UTF8ToString(pointer);
+  }
+
+  /** The preset gait file's JSON of a kind. */
+  presetJson(kind: number): string {
+    this.requireSchema();
+    const pointer = this.module._gl_preset_json!(kind);
+    if (!pointer) throw new Error(this.lastError());
+    return this.module.UTF8ToString(pointer);
+  }
+
+  /** Sets parameters (gait file JSON) of `id` or of every character of `kind` (id −1); returns null or the problem. */
+  setParams(id: number, kind: number, json: string): string | null {
+    if (!this.module._gl_sim_set_params) return 'this build of the module has no parameter schema';
+    const bytes = this.module.lengthBytesUTF8(json) + 1;
+    const pointer = this.module._malloc(bytes);
+    try {
+      this.module.stringToUTF8(json, pointer, bytes);
+      return this.module._gl_sim_set_params(this.sim, id, kind, pointer) === 0 ? null : this.lastError();
+    } finally {
+      this.module._free(pointer);
+    }
+  }
+
   private scratch = 0;
   private scratchBytes = 0;
 

@@ -42,7 +42,12 @@ export type SceneCommand =
   /** `count` new characters on the next free places of the crowd's grid. */
   | { type: 'add'; kind: CharacterType; count: number }
   /** Characters down for this long are reset automatically; 0 = never. */
-  | { type: 'autoReset'; seconds: number };
+  | { type: 'autoReset'; seconds: number }
+  /**
+   * New gait parameters (a gait file's JSON, gait-file.ts) for character `id`, or for every
+   * character of `character`'s type with id 'all'.
+   */
+  | { type: 'setParams'; id: number | 'all'; character: CharacterType; json: string };
 
 /** One character as the worker last saw it (gl_sim_character_info). */
 export interface CharacterStatus {
@@ -80,7 +85,11 @@ export type SimCommand =
   /** One fixed step, when paused. */
   | { type: 'step' }
   | { type: 'timeScale'; scale: TimeScale }
-  | { type: 'scene'; command: SceneCommand };
+  | { type: 'scene'; command: SceneCommand }
+  /** Asks for character `id`'s gait parameters; answered by a `params` event with the same request. */
+  | { type: 'getParams'; request: number; id: number }
+  /** Asks for a type's preset gait; answered by a `params` event. */
+  | { type: 'getPreset'; request: number; character: CharacterType };
 
 /** Statistics the worker reports a few times a second. */
 export interface SimStats {
@@ -111,7 +120,13 @@ export type SimEvent =
       header: number;
       threads: number;
       version: string;
+      /** The parameter schema (gl_schema_json), or null if this build has none. */
+      schema: string | null;
     }
+  /** Answer to getParams / getPreset: the gait file's JSON, or why there is none. */
+  | { type: 'params'; request: number; json: string | null; error: string | null }
+  /** A scene command the simulation refused (e.g. parameters out of bounds). */
+  | { type: 'commandError'; message: string }
   /**
    * Stop reading `generation`'s render buffer and answer `released`: the worker is about to free
    * it. Only one simulation exists at a time, so the module's fixed pthread pool is never

@@ -125,6 +125,7 @@ function newScene(): void {
     header: sim.renderHeader,
     threads: sim.threads,
     version: gaitlabVersion(module),
+    schema: module._gl_schema_json ? module.UTF8ToString(module._gl_schema_json()) : null,
   });
   if (!paused) clock.start(now());
 }
@@ -183,6 +184,11 @@ function apply(command: SceneCommand): void {
       autoResetSeconds = Math.max(0, command.seconds);
       sim.setAutoReset(autoResetSeconds);
       return;
+    case 'setParams': {
+      const problem = sim.setParams(command.id === 'all' ? -1 : command.id, Kind[command.character], command.json);
+      if (problem) post({ type: 'commandError', message: `the gait was not applied: ${problem}` });
+      return;
+    }
     default: {
       const unknown: never = command;
       throw new Error(`unknown scene command ${JSON.stringify(unknown)}`);
@@ -334,6 +340,19 @@ function handle(command: SimCommand): void {
         reportStats();
       }
       return;
+    case 'getParams':
+    case 'getPreset': {
+      let json: string | null = null;
+      let error: string | null = null;
+      try {
+        if (!sim) throw new Error('no simulation yet');
+        json = command.type === 'getParams' ? sim.getParams(command.id) : sim.presetJson(Kind[command.character]);
+      } catch (e) {
+        error = errorMessage(e);
+      }
+      post({ type: 'params', request: command.request, json, error });
+      return;
+    }
     case 'released':
       if (!resetPending || command.generation !== generation || !sim) return;
       resetPending = false;

@@ -57,9 +57,15 @@ export interface GaitlabHook {
   characters(): CharacterStatus[];
   getGait(id: number): Promise<GaitFile>;
   shareUrl(id: number): Promise<string>;
+  /** The preset gait of a type, as the module has it. */
+  presetGait(type: 'biped' | 'quadruped'): Promise<GaitFile>;
   throwBox(target: Vec3): void;
   setGoal(id: number | 'all', goal: { speed: number; turn: number }): void;
   select(id: number | null): void;
+  /** `count` fixed steps while paused. */
+  step(count: number): void;
+  pause(): void;
+  resume(): void;
   /** Screen position (CSS pixels) of character `id`'s root body, for tests that click it. */
   screenPosition(id: number): { x: number; y: number } | null;
 }
@@ -173,9 +179,16 @@ const hook: GaitlabHook = {
     if (!gaits) throw new Error('this build has no parameter schema');
     return gaits.shareUrl(id);
   },
+  presetGait: async (type) => {
+    if (!gaits) throw new Error('this build has no parameter schema');
+    return gaits.presetOf(type);
+  },
   throwBox: (target) => pointer?.throwAt(new THREE.Vector3(...target)),
   setGoal: (id, goal) => send({ type: 'setGoal', id, speed: goal.speed, turn: goal.turn }),
   select: (id) => select(id),
+  step: (count) => client?.send({ type: 'step', count }),
+  pause: () => client?.send({ type: 'pause' }),
+  resume: () => client?.send({ type: 'resume' }),
   screenPosition: (id) => {
     const index = crowd.firstBodyOf(id);
     if (index < 0 || !stage) return null;
@@ -228,16 +241,20 @@ function onKey(event: KeyboardEvent): void {
 }
 
 if (!window.crossOriginIsolated) {
-  // SharedArrayBuffer (hence WASM threads and the shared render buffer) needs isolation; the
-  // service worker (index.html) could not provide it either.
-  showError(
-    'This page must be served with cross-origin isolation',
-    'The simulation uses WebAssembly threads, which browsers only allow when the page is sent with the headers ' +
-      '"Cross-Origin-Opener-Policy: same-origin" and "Cross-Origin-Embedder-Policy: require-corp". ' +
-      'On a static host the page installs a service worker that adds them (coi-serviceworker), but this browser ' +
-      'did not allow it (service workers need https or localhost, and are off in private windows of some browsers). ' +
-      'Serve it with `npm start` (or `node scripts/serve.mjs`), or from https.',
-  );
+  // SharedArrayBuffer (hence WASM threads and the shared render buffer) needs isolation. On a
+  // host without the headers, coi-serviceworker (index.html) installs a service worker and
+  // reloads the page; give it a moment before saying it could not.
+  overlay.message('Not cross-origin isolated: enabling it through a service worker, the page reloads…');
+  setTimeout(() => {
+    showError(
+      'This page must be served with cross-origin isolation',
+      'The simulation uses WebAssembly threads, which browsers only allow when the page is sent with the headers ' +
+        '"Cross-Origin-Opener-Policy: same-origin" and "Cross-Origin-Embedder-Policy: require-corp". ' +
+        'On a static host the page installs a service worker that adds them (coi-serviceworker), but this browser ' +
+        'did not allow it (service workers need https or localhost, and are off in private windows of some browsers). ' +
+        'Serve it with `npm start` (or `node scripts/serve.mjs`), or from https.',
+    );
+  }, navigator.serviceWorker && window.isSecureContext ? 5000 : 0);
 } else if (stage) {
   const options = simOptionsFromQuery(location.search, {
     wasmUrl: new URL(`${import.meta.env.BASE_URL}wasm/gaitlab.mjs`, location.href).href,

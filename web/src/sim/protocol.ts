@@ -15,6 +15,8 @@ export interface SimOptions {
   seed: number;
   /** Characters in the demo scene: a mixed crowd, bipeds and quadrupeds alternating. */
   characters: number;
+  /** Start paused at step 0 (`?paused=1`): for stepping through a run, and for tests. */
+  paused?: boolean;
 }
 
 export type Vec3 = [number, number, number];
@@ -82,8 +84,8 @@ export type SimCommand =
   | { type: 'reset' }
   /** Answer to `release`: the main thread no longer reads `generation`'s render buffer. */
   | { type: 'released'; generation: number }
-  /** One fixed step, when paused. */
-  | { type: 'step' }
+  /** `count` fixed steps (default 1), when paused. */
+  | { type: 'step'; count?: number }
   | { type: 'timeScale'; scale: TimeScale }
   | { type: 'scene'; command: SceneCommand }
   /** Asks for character `id`'s gait parameters; answered by a `params` event with the same request. */
@@ -167,6 +169,7 @@ export function simOptionsFromQuery(search: string, defaults: SimOptions): SimOp
     threads: int('threads', 1, MAX_THREADS, defaults.threads),
     seed: int('seed', 0, 0xffffffff, defaults.seed),
     characters: int('characters', 0, 256, defaults.characters),
+    ...(query.get('paused') === '1' ? { paused: true } : {}),
   };
 }
 

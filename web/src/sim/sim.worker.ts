@@ -282,6 +282,7 @@ async function init(initial: SimOptions): Promise<void> {
     throw new Error('the page is not cross-origin isolated, so WASM threads (SharedArrayBuffer) are unavailable');
   }
   options = initial;
+  paused = initial.paused === true;
   module = await loadGaitlab(initial.wasmUrl, {
     print: (text) => console.log(`[gaitlab] ${text}`),
     printErr: (text) => console.warn(`[gaitlab] ${text}`),
@@ -322,7 +323,7 @@ function handle(command: SimCommand): void {
       // One fixed step while paused (while running, steps come from the clock).
       if (!sim || !paused) return;
       applyPending();
-      sim.step(1);
+      sim.step(Math.max(1, Math.min(1200, Math.floor(command.count ?? 1))));
       reportStats();
       return;
     case 'timeScale':

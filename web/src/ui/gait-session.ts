@@ -118,6 +118,10 @@ export class GaitSession {
     });
 
     void this.openLink().then(() => this.load(this.target));
+    // A link pasted into the address bar of the open page changes only the hash: read it too.
+    window.addEventListener('hashchange', () => {
+      if (hasGait(location.hash)) void this.openLink().then(() => this.load(this.target));
+    });
   }
 
   // ---- what is edited ----
@@ -162,6 +166,11 @@ export class GaitSession {
   /** Character `id`'s gait as the simulation has it now. */
   async gaitOf(id: number): Promise<GaitFile> {
     return this.normalise(await this.client.getParams(id));
+  }
+
+  /** A type's preset gait, as the module has it. */
+  presetOf(character: CharacterType): Promise<GaitFile> {
+    return this.preset(character);
   }
 
   private async preset(character: CharacterType): Promise<GaitFile> {
@@ -373,6 +382,7 @@ export class GaitSession {
     } catch {
       // No clipboard permission (an insecure origin, a headless browser): the link is in the panel.
     }
+    // replaceState changes the hash without a hashchange event: the page does not re-read its own link.
     history.replaceState(null, '', url);
     this.overlay.message(`${copied ? 'Link copied' : 'Link ready (copy it from the address bar)'}: ${url.length} characters.`);
   }

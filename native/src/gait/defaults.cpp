@@ -55,14 +55,14 @@ GaitParams defaultParams(const body::Morphology& m) {
   if (m.legs.size() == 2) {
     g.period = 1.0;
     g.maxAcceleration = 1.0;
-    g.gains = {300, 10, 300, 6, 8, 0.1, 0, 0, 0.1, 0.1, 400};
+    g.gains = {300, 10, 300, 6, 8, 0.1, 1000, 10, 0, 0, 0.1, 0.1, 400};
     g.legFrames[0] = bipedLegFrame();
     g.legs[0] = {0.0, 0.6, 0.7, 0.7};
     g.legs[1] = {0.5, 0.6, 0.7, 0.7};
   } else {
     g.period = 0.7;
     g.maxAcceleration = 1.0;
-    g.gains = {60, 3, 60, 3, 2, 0.02, 150, 5, 0.1, 0.1, 100};
+    g.gains = {60, 3, 60, 3, 2, 0.02, 200, 4, 150, 5, 0.1, 0.1, 100};
     g.legFrames[0] = quadrupedLegFrame();
     g.legFrames[1] = quadrupedLegFrame();
     // Trot pairing (REFERENCE.md): FL with BR, FR with BL.

@@ -104,6 +104,57 @@ enum {
 // Writes GL_INFO_FIELDS doubles per character for at most `capacity` characters into `out`;
 // returns the number of characters (which may exceed `capacity`).
 GL_EXPORT int gl_sim_character_info(void* sim, double* out, int capacity);
+// ---- Gait parameters: schema, presets, gait files (native/src/gait/schema.h, params_io.h) ----
+//
+// Gait files are JSON: {"format":"gaitlab-gait","version":1,"character":"biped"|"quadruped",
+// "params":{"<name>": number | [4 numbers], ...},"meta":{...}} (public/presets/*.json).
+
+// Error codes of the parameter functions; gl_last_error() gives the message of the last failure
+// on the calling thread ("FIELD: WHAT" for a refused file).
+enum {
+  GL_OK = 0,
+  GL_ERR_INVALID_PARAMS = 1,  // the file was refused (malformed, wrong character, bad field...)
+  GL_ERR_NO_CHARACTER = 2,    // no character with that id, or none of that kind
+  GL_ERR_KIND = 3,            // kind is not GL_KIND_BIPED or GL_KIND_QUADRUPED, or the
+                              // character with that id is of another kind
+};
+GL_EXPORT const char* gl_last_error(void);
+
+// The parameter schema: {"version":1,"characters":{"biped":[...],"quadruped":[...]}}, an entry
+// per parameter {"name","group","min","max","default","unit","description","knots"}.
+GL_EXPORT const char* gl_schema_json(void);
+
+// The shipped preset of a kind, as a gait file; NULL for a kind that is not a character.
+GL_EXPORT const char* gl_preset_json(int kind);
+
+// Validates a gait file for `kind` and gives it to the character with id `characterId` (as
+// returned by gl_sim_spawn), or with characterId = -1 to every character of that kind. Nothing
+// changes unless the whole file is valid. Returns GL_OK or an error code.
+GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char* json);
+
+// The gait parameters a character is using, as a gait file; NULL if there is no such character.
+GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
+
+// ---- Optimisation, one generation at a time (native/src/optimize/optimizer.h) ----------------
+//
+// For the browser's optimize panel: create a search, call gl_opt_step once per generation (each
+// runs `candidates` evaluations, a few tenths of a second to seconds), read the best so far.
+
+// A new search. `kind` is GL_KIND_BIPED or GL_KIND_QUADRUPED; `method` 0 = greedy (thesis §3.3),
+// 1 = CMA-ES; `start_json` a gait file to start from, or NULL for the preset; `settings_json`
+// NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,...}, see
+// optimize/objective.h). `threads` is clamped to [1, GL_MAX_THREADS]. Returns NULL on error
+// (gl_last_error() says why).
+GL_EXPORT void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
+                              const char* start_json, const char* settings_json);
+GL_EXPORT void gl_opt_destroy(void* opt);
+// Runs one generation; returns the best objective so far.
+GL_EXPORT double gl_opt_step(void* opt);
+GL_EXPORT int gl_opt_generation(void* opt);
+GL_EXPORT int gl_opt_evaluations(void* opt);
+// The best parameters so far as a gait file (meta: method, seed, objective, its terms,
+// generations, evaluations). Valid until the next call on this handle.
+GL_EXPORT const char* gl_opt_best_json(void* opt);
 
 #ifdef __cplusplus
 }

@@ -327,12 +327,11 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const url = await page.evaluate(() => window.gaitlab.shareUrl(0));
     assert.match(url, /#gait=1\.\d+\.[A-Za-z0-9_-]+$/);
     const shared = await openPage(url);
+    await shared.page.getByRole('status').getByText(/gait loaded from the link/).waitFor({ timeout: PAGE_TIMEOUT });
     await ready(shared.page);
-    await shared.page.waitForTimeout(1500);
     const bipedId = (await shared.page.evaluate(() => window.gaitlab.characters())).find((c) => c.type === 'biped').id;
     const received = await shared.page.evaluate((id) => window.gaitlab.getGait(id), bipedId);
     assert.deepEqual(received.params, after.params, 'the link reproduces the parameters exactly');
-    assert.match(await shared.page.getByRole('status').innerText(), /gait loaded from the link/);
     assert.deepEqual(shared.problems, [], 'no page errors on the shared page');
     await shared.page.close();
 

@@ -331,6 +331,14 @@ if (!window.crossOriginIsolated) {
   resize();
   requestAnimationFrame(frame);
 
+  // Dynamic resolution: every 2 s, a frame rate below 24 FPS lowers the render scale and one
+  // above 50 raises it again (the thresholds far apart, so it does not oscillate).
+  setInterval(() => {
+    if (document.visibilityState !== 'visible' || fpsMeter.rate <= 0) return;
+    if (fpsMeter.rate < 24 && activeStage.scale > 0.35) activeStage.setRenderScale(activeStage.scale * 0.75);
+    else if (fpsMeter.rate > 50 && activeStage.scale < 1) activeStage.setRenderScale(activeStage.scale / 0.75);
+  }, 2000);
+
   setInterval(() => {
     // A worker blocked inside the module (e.g. waiting on a pthread that cannot start) cannot
     // report an error itself: notice its silence. Hidden pages are skipped (timers throttle).
@@ -347,6 +355,7 @@ if (!window.crossOriginIsolated) {
       threads: state.threads,
       mode: isolationMode() === 'service worker' ? 'multi-threaded (isolated by service worker)' : 'multi-threaded (isolated by headers)',
       drawCalls: state.drawCalls,
+      renderScale: activeStage.scale,
       paused: state.paused,
       timeScale: state.timeScale,
       selected: selected ? `${selected.type} #${selected.id}${selected.fallen ? ' (down)' : ''}` : null,

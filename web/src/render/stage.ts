@@ -65,6 +65,23 @@ export class Stage {
     this.followTarget();
   }
 
+  /** Drawing-buffer pixels per CSS pixel: the device's ratio (at most 2) times the render scale. */
+  private renderScale = 1;
+
+  /**
+   * Dynamic resolution: a GPU that cannot keep up (a software rasteriser, an old laptop) draws
+   * fewer pixels rather than fewer frames. `scale` is relative to the device pixel ratio.
+   */
+  setRenderScale(scale: number): void {
+    this.renderScale = Math.min(1, Math.max(0.35, scale));
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2) * this.renderScale);
+    this.resize();
+  }
+
+  get scale(): number {
+    return this.renderScale;
+  }
+
   /** Matches the drawing buffer and projection to the canvas's CSS size. */
   resize(): void {
     const canvas = this.renderer.domElement;

@@ -65,6 +65,7 @@ export class GaitDiagram {
   }
 
   setPhase(phase: number | null): void {
+    if (phase === this.phase) return;
     this.phase = phase;
     this.draw();
   }

@@ -140,13 +140,22 @@ export class GaitSession {
     this.phaseSource = source ? { phase: source.phase, at: performance.now(), period } : null;
   }
 
-  /** Called every animation frame: the phase moves smoothly between the worker's reports. */
+  /**
+   * Called every animation frame: the phase marker moves smoothly between the worker's reports.
+   * Redrawn at most 20 times a second, and only in editors on screen (a folded group's are not):
+   * a 2D canvas redraw is cheap, twenty of them every frame are not.
+   */
   animate(running: boolean): void {
+    const now = performance.now();
+    if (now - this.lastMarker < 50) return;
+    this.lastMarker = now;
     const s = this.phaseSource;
-    const phase = s ? (s.phase + (running ? (performance.now() - s.at) / 1000 / s.period : 0)) % 1 : null;
-    for (const c of this.curves.values()) c.setPhase(phase);
+    const phase = s ? (s.phase + (running ? (now - s.at) / 1000 / s.period : 0)) % 1 : null;
+    for (const c of this.curves.values()) if (c.element.offsetParent !== null) c.setPhase(phase);
     this.diagram?.setPhase(phase);
   }
+
+  private lastMarker = 0;
 
   private async load(target: { id: number | 'all'; character: CharacterType }): Promise<void> {
     const token = ++this.loadToken;

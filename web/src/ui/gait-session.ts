@@ -23,6 +23,22 @@ import { decodeGaitHash, encodeGaitHash, hasGait } from '../share/link';
 import type { CharacterStatus } from '../sim/protocol';
 import type { SimClient } from '../sim/sim-client';
 
+/**
+ * Footfall patterns of the quadruped (Hildebrand's gait diagrams, as in the thesis's Figure 2.1):
+ * per leg the step trigger (phase of lift-off) and duty factor. The preset is a trot.
+ */
+const QUADRUPED_GAITS: Record<string, Record<string, [number, number]>> = {
+  // Lateral-sequence walk: hind left, fore left, hind right, fore right a quarter cycle apart,
+  // three feet on the ground most of the time.
+  walk: { backLeft: [0, 0.75], frontLeft: [0.25, 0.75], backRight: [0.5, 0.75], frontRight: [0.75, 0.75] },
+  // Diagonal pairs together.
+  trot: { frontLeft: [0, 0.6], backRight: [0, 0.6], frontRight: [0.5, 0.6], backLeft: [0.5, 0.6] },
+  // Lateral pairs together.
+  pace: { frontLeft: [0, 0.6], backLeft: [0, 0.6], frontRight: [0.5, 0.6], backRight: [0.5, 0.6] },
+  // Fore pair, then hind pair.
+  bound: { frontLeft: [0, 0.5], frontRight: [0, 0.5], backLeft: [0.5, 0.5], backRight: [0.5, 0.5] },
+};
+
 /** Undo steps kept per session. */
 const UNDO_LIMIT = 100;
 
@@ -40,8 +56,10 @@ function legTimings(entries: SchemaEntry[]): { leg: string; duty: SchemaEntry; t
 }
 
 export class GaitSession {
-  private readonly editorsPanel: HTMLElement;
+  /** The editors, folded into their heading unless a character is selected (or the user opens them). */
+  private readonly editorsPanel: HTMLDetailsElement;
   private readonly heading: HTMLElement;
+  private readonly content: HTMLElement;
   /** What is edited: one character, or every character of a type. */
   private target: { id: number | 'all'; character: CharacterType } = { id: 'all', character: 'biped' };
   private gait: GaitFile | null = null;
@@ -93,6 +111,11 @@ export class GaitSession {
       .onChange((t: CharacterType) => {
         if (this.target.id === 'all') void this.load({ id: 'all', character: t });
       });
+    const pattern = { quadrupedGait: 'trot' };
+    folder
+      .add(pattern, 'quadrupedGait', Object.keys(QUADRUPED_GAITS))
+      .name('quadruped gait')
+      .onChange((name: string) => void this.setQuadrupedGait(name));
     folder.add({ undo: () => this.undo() }, 'undo').name('Undo');
     folder.add({ redo: () => this.redo() }, 'redo').name('Redo');
     folder.add({ reset: () => void this.resetToPreset() }, 'reset').name('Reset to preset');
@@ -101,12 +124,13 @@ export class GaitSession {
     folder.add({ exportGait: () => this.exportFile() }, 'exportGait').name('Export JSON');
     folder.add({ importGait: () => this.importFile() }, 'importGait').name('Import JSON');
 
-    this.editorsPanel = document.createElement('div');
+    this.editorsPanel = document.createElement('details');
     this.editorsPanel.className = 'editors';
     this.editorsPanel.setAttribute('aria-label', 'gait editors');
-    this.heading = document.createElement('div');
+    this.heading = document.createElement('summary');
     this.heading.className = 'editors-heading';
-    this.editorsPanel.append(this.heading);
+    this.content = document.createElement('div');
+    this.editorsPanel.append(this.heading, this.content);
     document.body.append(this.editorsPanel);
 
     window.addEventListener('keydown', (e) => {
@@ -129,6 +153,8 @@ export class GaitSession {
   /** The selected character (or none: every character of the chosen type). */
   select(status: CharacterStatus | null): void {
     const target = status ? { id: status.id, character: status.type } : { id: 'all' as const, character: this.controls.editType };
+    // Open while a character is selected: selecting one is how people ask to edit it.
+    this.editorsPanel.open = status !== null;
     if (target.id === this.target.id && target.character === this.target.character) return;
     void this.load(target);
   }
@@ -207,7 +233,7 @@ export class GaitSession {
     const entries = this.entries();
     const who = this.target.id === 'all' ? `every ${this.target.character}` : `${this.target.character} #${this.target.id}`;
     this.heading.textContent = `Gait of ${who}`;
-    this.editorsPanel.querySelectorAll('.curve-editor, .gait-diagram, details').forEach((n) => n.remove());
+    this.content.replaceChildren();
     this.curves.clear();
 
     this.diagramLegs = legTimings(entries);
@@ -226,7 +252,7 @@ export class GaitSession {
           this.edit(params, done);
         },
       });
-      this.editorsPanel.append(this.diagram.element);
+      this.content.append(this.diagram.element);
     } else {
       this.diagram = null;
     }
@@ -256,7 +282,7 @@ export class GaitSession {
         this.curves.set(e.name, editor);
         details.append(editor.element);
       }
-      this.editorsPanel.append(details);
+      this.content.append(details);
     }
 
     // Scalars in the lil-gui panel, a sub-folder per group, descriptions as tooltips.
@@ -369,6 +395,30 @@ export class GaitSession {
       this.refresh();
     }
     this.apply(this.gait!);
+  }
+
+  /**
+   * Sets a footfall pattern's step triggers and duty factors: on the selected character if it is
+   * a quadruped, otherwise on every quadruped.
+   */
+  private async setQuadrupedGait(name: string): Promise<void> {
+    const pattern = QUADRUPED_GAITS[name];
+    if (!pattern) return;
+    if (this.target.character !== 'quadruped') {
+      this.controls.editType = 'quadruped';
+      this.folder.controllersRecursive().forEach((c) => c.updateDisplay());
+      await this.load({ id: 'all', character: 'quadruped' });
+    }
+    const params: Record<string, ParamValue> = {};
+    for (const l of this.diagramLegs) {
+      const timing = pattern[l.leg];
+      if (!timing) continue;
+      params[l.trigger.name] = timing[0];
+      params[l.duty.name] = Math.min(l.duty.max, Math.max(l.duty.min, timing[1]));
+    }
+    this.remember();
+    this.edit(params, true);
+    this.refresh();
   }
 
   // ---- sharing ----

@@ -10,7 +10,7 @@ import fs from 'node:fs';
 import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
-import { after, before, describe, it } from 'node:test';
+import { after, afterEach, before, describe, it } from 'node:test';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../../scripts/serve.mjs';
@@ -146,6 +146,12 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
         '--disable-sync',
       ],
     });
+  });
+
+  // A test that failed half-way leaves its page open, simulating and rendering on this small
+  // machine's cores while the next test runs: close every page between tests.
+  afterEach(async () => {
+    for (const page of context?.pages() ?? []) await page.close().catch(() => {});
   });
 
   after(async () => {

@@ -325,7 +325,11 @@ if (!window.crossOriginIsolated) {
     requestAnimationFrame(frame);
   };
 
-  const resize = () => activeStage.resize();
+  const resize = () => {
+    // Keep the crowd clear of the control panel on wide windows.
+    activeStage.rightInset = window.innerWidth > 700 ? panel.gui.domElement.offsetWidth + 10 : 0;
+    activeStage.resize();
+  };
   window.addEventListener('resize', resize);
   window.addEventListener('keydown', onKey);
   resize();

@@ -278,6 +278,17 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.waitForTimeout(500); // the first frame is framed by the camera
     const at = (id) => page.evaluate((i) => window.gaitlab.screenPosition(i), id);
 
+    // Steering goals reach one character or all of them.
+    await page.evaluate(() => window.gaitlab.setGoal('all', { speed: 0.6, turn: 0 }));
+    await page.evaluate(() => window.gaitlab.setGoal(3, { speed: 1.4, turn: -0.3 }));
+    await page.waitForFunction(() => window.gaitlab.characters().find((c) => c.id === 3)?.goal.speed === 1.4, null, { timeout: PAGE_TIMEOUT });
+    const goals = Object.fromEntries((await page.evaluate(() => window.gaitlab.characters())).map((c) => [c.id, c.goal]));
+    assert.deepEqual(goals, { 0: { speed: 0.6, turn: 0 }, 1: { speed: 0.6, turn: 0 }, 2: { speed: 0.6, turn: 0 }, 3: { speed: 1.4, turn: -0.3 } });
+
+    // Slow motion is the worker's clock's business: the page reports it.
+    await page.locator('.lil-controller', { hasText: 'slow motion' }).locator('select').selectOption({ label: '0.25×' });
+    await page.waitForFunction(() => window.gaitlab.stats().timeScale === 0.25, null, { timeout: PAGE_TIMEOUT });
+
     // Click a character: it is selected.
     const p1 = await at(1);
     await page.mouse.click(p1.x, p1.y);
@@ -342,6 +353,13 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const after = await page.evaluate(() => window.gaitlab.getGait(0));
     assert.notDeepEqual(after.params[name], before.params[name], `${name} changed in the running simulation`);
     assert.deepEqual(after.params[name].filter((_, k) => k !== 1), before.params[name].filter((_, k) => k !== 1), 'only knot 2 moved');
+    // Undo puts the knot back in the running simulation; redo moves it again.
+    await page.getByRole('button', { name: 'Undo' }).click();
+    await page.waitForTimeout(800);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params[name], before.params[name], 'undo');
+    await page.getByRole('button', { name: 'Redo' }).click();
+    await page.waitForTimeout(800);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params[name], after.params[name], 'redo');
     await page.locator('.editors').screenshot({ path: path.join(resultsDir, 'editors.png') });
     await page.screenshot({ path: path.join(resultsDir, 'demo-editing.png') });
 

@@ -391,7 +391,7 @@ export class GaitSession {
       this.build();
     } else {
       this.remember();
-      this.gait = { ...gait, params: { ...(this.gait?.params ?? {}), ...gait.params } };
+      this.gait = gait;
       this.refresh();
     }
     this.apply(this.gait!);
@@ -457,10 +457,7 @@ export class GaitSession {
       this.target = { id: 'all', character: gait.character };
       this.controls.editType = gait.character;
       this.folder.controllersRecursive().forEach((c) => c.updateDisplay());
-      // Over the preset, so a partial gait leaves the rest at preset values.
-      const preset = await this.preset(gait.character);
-      const full = { ...preset, params: { ...preset.params, ...gait.params } };
-      this.client.send({ type: 'scene', command: { type: 'setParams', id: 'all', character: gait.character, json: JSON.stringify(full) } });
+      this.client.send({ type: 'scene', command: { type: 'setParams', id: 'all', character: gait.character, json: JSON.stringify(gait) } });
       this.overlay.message(`Shared ${gait.character} gait loaded from the link; every ${gait.character} walks with it.`);
     } catch (error) {
       const text = error instanceof GaitError ? error.message : `unexpected problem (${String(error)})`;

@@ -66,7 +66,7 @@ int gl_sim_set_goal(void* s, int id, double speed, double turn_rate) {
     sim(s)->setGoal(-1, goal);
     return 0;
   }
-  const int i = sim(s)->characterIndex(id);
+  const int i = sim(s)->indexOf(id);
   if (i < 0) return -1;
   sim(s)->setGoal(i, goal);
   return 0;
@@ -102,7 +102,7 @@ int gl_sim_character_info(void* s, double* out, int capacity) {
     const gaitlab::physics::Character& c = S.character(i);
     const auto root = c.segmentState(c.morphology().legFrames[0]);
     double* o = out + i * GL_INFO_FIELDS;
-    o[GL_INFO_ID] = S.characterId(i);
+    o[GL_INFO_ID] = S.idOf(i);
     o[GL_INFO_KIND] = static_cast<int>(S.kindOf(i));
     o[GL_INFO_X] = root.position.x();
     o[GL_INFO_Y] = root.position.y();

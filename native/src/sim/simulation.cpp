@@ -120,7 +120,7 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   const double groundY = world_.terrainHeight(x, z);
   agents_.push_back(std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
   const int id = nextId_++;
-  agentIds_.push_back(id);
+  agents_.back()->id = id;
   agents_.back()->kind = kind;
   const physics::Character& c = *agents_.back()->body;
   for (int i = 0; i < c.segmentCount(); ++i) {
@@ -133,10 +133,6 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   return id;
 }
 
-int Simulation::characterIndex(int id) const {
-  const auto it = std::find(agentIds_.begin(), agentIds_.end(), id);
-  return it == agentIds_.end() ? -1 : static_cast<int>(it - agentIds_.begin());
-}
 
 void Simulation::demoScene(int characters) {
   SceneRandom rng{seed_};
@@ -225,6 +221,12 @@ std::string Simulation::stateHash() const {
 
 // ---- Interaction (the demo page, issue 5) ----------------------------------------------------
 
+int Simulation::indexOf(int id) const {
+  for (size_t i = 0; i < agents_.size(); ++i)
+    if (agents_[i]->id == id) return static_cast<int>(i);
+  return -1;
+}
+
 int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& velocity,
                          double half) {
   if (bodyCount() + 1 > kRenderCapacity) return -1;
@@ -250,7 +252,7 @@ int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& vel
 
 bool Simulation::drag(int id, int segment, const Eigen::Vector3d& local,
                       const Eigen::Vector3d& target) {
-  const int i = characterIndex(id);
+  const int i = indexOf(id);
   if (i < 0 || segment < 0 || segment >= character(i).segmentCount()) return false;
   drag_ = {id, segment, local, target};
   return true;
@@ -258,7 +260,7 @@ bool Simulation::drag(int id, int segment, const Eigen::Vector3d& local,
 
 void Simulation::applyDrag() {
   if (drag_.id < 0) return;
-  const int i = characterIndex(drag_.id);
+  const int i = indexOf(drag_.id);
   if (i < 0) {  // the character was removed while held
     endDrag();
     return;
@@ -289,7 +291,7 @@ void Simulation::applyDrag() {
 }
 
 bool Simulation::resetCharacter(int id) {
-  const int i = characterIndex(id);
+  const int i = indexOf(id);
   if (i < 0) return false;
   Agent& old = *agents_[i];
   const body::Morphology& m = old.body->morphology();
@@ -309,6 +311,7 @@ bool Simulation::resetCharacter(int id) {
 
   auto fresh = std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, world_.terrainHeight(x, z), z),
                                        heading);
+  fresh->id = id;
   fresh->kind = kind;
   fresh->controller.setParams(params);
   fresh->controller.setGoal(goal);
@@ -323,13 +326,12 @@ bool Simulation::resetCharacter(int id) {
 }
 
 bool Simulation::removeCharacter(int id) {
-  const int i = characterIndex(id);
+  const int i = indexOf(id);
   if (i < 0) return false;
   std::vector<btRigidBody*> bodies;
   for (int k = 0; k < agents_[i]->body->segmentCount(); ++k) bodies.push_back(agents_[i]->body->body(k));
   removeRenderBodies(bodies);
   agents_.erase(agents_.begin() + i);
-  agentIds_.erase(agentIds_.begin() + i);
   if (drag_.id == id) endDrag();
   return true;
 }
@@ -355,7 +357,7 @@ void Simulation::updateFallen() {
       continue;
     }
     if (a.fallenSince < 0) a.fallenSince = now;
-    if (autoResetSeconds_ > 0 && now - a.fallenSince >= autoResetSeconds_) toReset.push_back(agentIds_[i]);
+    if (autoResetSeconds_ > 0 && now - a.fallenSince >= autoResetSeconds_) toReset.push_back(a.id);
   }
   for (int id : toReset) resetCharacter(id);
 }

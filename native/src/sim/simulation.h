@@ -42,8 +42,8 @@ class Simulation {
   int characterCount() const { return static_cast<int>(agents_.size()); }
   // The index (0..characterCount()-1) of the character spawn() returned `id` for, or -1 when
   // `id` names no character (a box, or nothing spawned).
-  int characterIndex(int id) const;
-  int characterId(int index) const { return agentIds_[index]; }
+  int characterIndex(int id) const { return indexOf(id); }
+  int characterId(int index) const { return agents_[index]->id; }
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }
   double groundHeight(double x, double z) const { return world_.terrainHeight(x, z); }
@@ -68,7 +68,9 @@ class Simulation {
   // (it queues its commands and applies them at the start of the next step), so each one acts at
   // a known step index and a run can be replayed from (seed, scene, command log).
 
-  // (Ids and indices: characterIndex() and characterId() above.)
+  // Index in 0..characterCount()-1 of the character with id `id`, or -1.
+  int indexOf(int id) const;
+  int idOf(int index) const { return agents_[index]->id; }
   Kind kindOf(int index) const { return agents_[index]->kind; }
   // Fallen now (walk_trial.h's hasFallen, evaluated after every step), and for how long.
   bool fallen(int index) const { return agents_[index]->fallenSince >= 0; }
@@ -119,12 +121,12 @@ class Simulation {
     std::vector<Eigen::Vector3d> torques;
     bool footContact[gait::kMaxLegs] = {false, false, false, false};
     const physics::World* world;
+    int id = -1;
     Kind kind = Kind::Biped;
     double fallenSince = -1;  // simulated time it was first seen fallen; -1 = standing
   };
   void control(Agent& agent);
   std::vector<std::unique_ptr<Agent>> agents_;
-  std::vector<int> agentIds_;  // spawn() id of agents_[i]
   std::vector<RenderBody> renderBodies_;
   ThreadPool pool_;
   uint32_t seed_;

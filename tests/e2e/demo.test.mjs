@@ -373,6 +373,11 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const bipedId = (await shared.page.evaluate(() => window.gaitlab.characters())).find((c) => c.type === 'biped').id;
     const received = await shared.page.evaluate((id) => window.gaitlab.getGait(id), bipedId);
     assert.deepEqual(received.params, after.params, 'the link reproduces the parameters exactly');
+    // A biped added now walks with the shared gait too, not with the preset.
+    await shared.page.getByRole('button', { name: 'Add characters' }).click();
+    await shared.page.waitForFunction(() => window.gaitlab.characters().length === 3, null, { timeout: PAGE_TIMEOUT });
+    const added = Math.max(...(await shared.page.evaluate(() => window.gaitlab.characters())).map((c) => c.id));
+    assert.deepEqual((await shared.page.evaluate((id) => window.gaitlab.getGait(id), added)).params, after.params, 'added biped');
     assert.deepEqual(shared.problems, [], 'no page errors on the shared page');
     await shared.page.close();
 

@@ -13,6 +13,7 @@ import {
   CHARACTER_TYPES,
   GaitError,
   parseGait,
+  sameParams,
   type CharacterType,
   type GaitFile,
   type ParamSchema,
@@ -42,12 +43,14 @@ const QUADRUPED_GAITS: Record<string, Record<string, [number, number]>> = {
 /** Undo steps kept per session. */
 const UNDO_LIMIT = 100;
 
-/** The duty factor / step trigger pairs of the schema, one per leg (prefix "legs.<leg>."). */
+/**
+ * The duty factor / step trigger pairs of the schema, one per leg: "<leg>.dutyFactor" and
+ * "<leg>.stepTrigger" (the leg's name is the last part before them).
+ */
 function legTimings(entries: SchemaEntry[]): { leg: string; duty: SchemaEntry; trigger: SchemaEntry }[] {
   const out: { leg: string; duty: SchemaEntry; trigger: SchemaEntry }[] = [];
   for (const duty of entries) {
-    const m = /^(.*)\.?dutyFactor$/.exec(duty.name);
-    if (!m || duty.knots !== 1) continue;
+    if (!duty.name.endsWith('dutyFactor') || duty.knots !== 1) continue;
     const prefix = duty.name.slice(0, duty.name.length - 'dutyFactor'.length);
     const trigger = entries.find((e) => e.name === `${prefix}stepTrigger`);
     if (trigger) out.push({ leg: prefix.replace(/\.$/, '').split('.').pop() || prefix, duty, trigger });
@@ -161,6 +164,7 @@ export class GaitSession {
 
   /** The statistics report: the phase marker follows the selected character (or the first of the type). */
   tick(selected: CharacterStatus | null, all: CharacterStatus[] = []): void {
+    this.characters = all;
     const source = selected ?? all.find((c) => c.type === this.target.character) ?? null;
     const period = typeof this.gait?.params.period === 'number' ? (this.gait.params.period as number) : 1;
     this.phaseSource = source ? { phase: source.phase, at: performance.now(), period } : null;
@@ -182,12 +186,18 @@ export class GaitSession {
   }
 
   private lastMarker = 0;
+  /** The crowd as last reported. */
+  private characters: CharacterStatus[] = [];
 
   private async load(target: { id: number | 'all'; character: CharacterType }): Promise<void> {
     const token = ++this.loadToken;
     this.target = target;
     try {
-      const gait = target.id === 'all' ? await this.preset(target.character) : await this.gaitOf(target.id);
+      // Every character of a type walks with the same gait unless one was edited alone: start
+      // from the first one's (the preset only when there is none of that type).
+      const first = this.characters.find((c) => c.type === target.character);
+      const id = target.id === 'all' ? first?.id : target.id;
+      const gait = id === undefined ? await this.preset(target.character) : await this.gaitOf(id);
       if (token !== this.loadToken) return;
       this.gait = gait;
       this.undoStack = [];
@@ -333,6 +343,9 @@ export class GaitSession {
   /** Keeps the state before an edit for undo (once per gesture). */
   private remember(): void {
     if (!this.gait) return;
+    // One gesture can announce itself twice (a slider's press and its focus): keep one step.
+    const top = this.undoStack[this.undoStack.length - 1];
+    if (top && sameParams(top, this.gait)) return;
     this.undoStack.push(structuredClone(this.gait));
     if (this.undoStack.length > UNDO_LIMIT) this.undoStack.shift();
     this.redoStack = [];

@@ -295,6 +295,13 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.mouse.click(p1.x, p1.y);
     await page.waitForFunction(() => window.gaitlab.stats().selected === 1, null, { timeout: PAGE_TIMEOUT });
     assert.match(await page.getByTestId('hud').innerText(), /selected: quadruped #1/);
+    // Keys steer the selected character: W is 0.1 m/s faster, A turns 5°/s more to the left.
+    await page.keyboard.press('w');
+    await page.keyboard.press('a');
+    await page.waitForFunction(() => window.gaitlab.characters().find((c) => c.id === 1)?.goal.turn > 0, null, { timeout: PAGE_TIMEOUT });
+    const steered = (await page.evaluate(() => window.gaitlab.characters())).find((c) => c.id === 1).goal;
+    assert.ok(Math.abs(steered.speed - 0.7) < 1e-9 && Math.abs(steered.turn - (5 * Math.PI) / 180) < 1e-9, JSON.stringify(steered));
+    assert.equal((await page.evaluate(() => window.gaitlab.characters())).find((c) => c.id === 0).goal.speed, 0.6, 'the others keep theirs');
 
     // Click the ground where nothing else is (no panel over the canvas, no character near): a box flies.
     const ground = await page.evaluate(() => {

@@ -18,3 +18,8 @@ if [ ! -f build/wasm/build.ninja ]; then
 fi
 say "building WebAssembly (build/wasm)"
 ninja -C build/wasm || fail "WebAssembly build failed"
+
+# The web page as static files (build/web): what a static host serves. Vite rebuilds it in about
+# a second; the dev server (npm start) does not need it.
+say "building the web page (build/web)"
+npx --no-install vite build -c web/vite.config.ts --logLevel warn || fail "web build failed"

@@ -102,11 +102,19 @@ function coiServiceWorker(): Plugin {
     generateBundle() {
       this.emitFile({ type: 'asset', fileName: name, source: fs.readFileSync(file) });
     },
+    // A classic script, first in <head>, before anything else loads: on a host without COOP/COEP
+    // it installs the service worker and reloads; with the headers it does nothing. (Injected
+    // here rather than written in index.html, where Vite would try to bundle it.)
+    transformIndexHtml() {
+      return [{ tag: 'script', attrs: { src: name }, injectTo: 'head-prepend' }];
+    },
   };
 }
 
 export default defineConfig({
   root: webDir,
+  // Relative URLs in the built page, so it works from any folder of a static host.
+  base: './',
   publicDir: path.join(repoDir, 'public'),
   // Several HTML entry points (index.html now, bench.html later); no SPA fallback, so a missing
   // file is a 404 instead of the demo page.

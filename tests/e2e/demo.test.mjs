@@ -10,7 +10,7 @@ import fs from 'node:fs';
 import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
-import { after, before, describe, it } from 'node:test';
+import { after, afterEach, before, describe, it } from 'node:test';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../../scripts/serve.mjs';
@@ -98,27 +98,26 @@ async function distinctColours(page, png) {
   }, png.toString('base64'));
 }
 
-/** A proxy in front of the dev server that drops the cross-origin isolation headers. */
-function startStrippingProxy(target) {
-  const proxy = http.createServer((request, response) => {
-    const upstream = http.request(
-      new URL(request.url ?? '/', target),
-      { method: request.method, headers: { ...request.headers, host: new URL(target).host } },
-      (answer) => {
-        const headers = { ...answer.headers };
-        delete headers['cross-origin-opener-policy'];
-        delete headers['cross-origin-embedder-policy'];
-        response.writeHead(answer.statusCode ?? 502, headers);
-        answer.pipe(response);
-      },
-    );
-    upstream.on('error', () => response.destroy());
-    request.pipe(upstream);
+/**
+ * The built page (build/web, `npm run build`) served as a static host without COOP/COEP would
+ * serve it: plain files, right content types, no isolation headers.
+ */
+function startStaticHost(root) {
+  const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm', '.json': 'application/json', '.svg': 'image/svg+xml' };
+  const host = http.createServer((request, response) => {
+    const url = new URL(request.url ?? '/', 'http://host');
+    const file = path.join(root, decodeURIComponent(url.pathname).replace(/\/$/, '/index.html'));
+    if (!file.startsWith(root) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
+      response.writeHead(404).end();
+      return;
+    }
+    response.writeHead(200, { 'Content-Type': types[path.extname(file)] ?? 'application/octet-stream' });
+    fs.createReadStream(file).pipe(response);
   });
   return new Promise((resolve) => {
-    proxy.listen(0, '127.0.0.1', () => {
-      const { port } = /** @type {import('node:net').AddressInfo} */ (proxy.address());
-      resolve({ url: `http://127.0.0.1:${port}/`, close: () => new Promise((done) => proxy.close(done)) });
+    host.listen(0, '127.0.0.1', () => {
+      const { port } = /** @type {import('node:net').AddressInfo} */ (host.address());
+      resolve({ port, url: `http://127.0.0.1:${port}/`, close: () => new Promise((done) => host.close(done)) });
     });
   });
 }
@@ -146,6 +145,12 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
         '--disable-sync',
       ],
     });
+  });
+
+  // A test that failed half-way leaves its page open, simulating and rendering on this small
+  // machine's cores while the next test runs: close every page between tests.
+  afterEach(async () => {
+    for (const page of context?.pages() ?? []) await page.close().catch(() => {});
   });
 
   after(async () => {
@@ -274,16 +279,50 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.waitForTimeout(500); // the first frame is framed by the camera
     const at = (id) => page.evaluate((i) => window.gaitlab.screenPosition(i), id);
 
+    // Steering goals reach one character or all of them.
+    await page.evaluate(() => window.gaitlab.setGoal('all', { speed: 0.6, turn: 0 }));
+    await page.evaluate(() => window.gaitlab.setGoal(3, { speed: 1.4, turn: -0.3 }));
+    await page.waitForFunction(() => window.gaitlab.characters().find((c) => c.id === 3)?.goal.speed === 1.4, null, { timeout: PAGE_TIMEOUT });
+    const goals = Object.fromEntries((await page.evaluate(() => window.gaitlab.characters())).map((c) => [c.id, c.goal]));
+    assert.deepEqual(goals, { 0: { speed: 0.6, turn: 0 }, 1: { speed: 0.6, turn: 0 }, 2: { speed: 0.6, turn: 0 }, 3: { speed: 1.4, turn: -0.3 } });
+
+    // Slow motion is the worker's clock's business: the page reports it.
+    await page.locator('.lil-controller', { hasText: 'slow motion' }).locator('select').selectOption({ label: '0.25×' });
+    await page.waitForFunction(() => window.gaitlab.stats().timeScale === 0.25, null, { timeout: PAGE_TIMEOUT });
+
     // Click a character: it is selected.
     const p1 = await at(1);
     await page.mouse.click(p1.x, p1.y);
     await page.waitForFunction(() => window.gaitlab.stats().selected === 1, null, { timeout: PAGE_TIMEOUT });
     assert.match(await page.getByTestId('hud').innerText(), /selected: quadruped #1/);
+    // Keys steer the selected character: W is 0.1 m/s faster, A turns 5°/s more to the left.
+    await page.keyboard.press('w');
+    await page.keyboard.press('a');
+    await page.waitForFunction(() => window.gaitlab.characters().find((c) => c.id === 1)?.goal.turn > 0, null, { timeout: PAGE_TIMEOUT });
+    const steered = (await page.evaluate(() => window.gaitlab.characters())).find((c) => c.id === 1).goal;
+    assert.ok(Math.abs(steered.speed - 0.7) < 1e-9 && Math.abs(steered.turn - (5 * Math.PI) / 180) < 1e-9, JSON.stringify(steered));
+    assert.equal((await page.evaluate(() => window.gaitlab.characters())).find((c) => c.id === 0).goal.speed, 0.6, 'the others keep theirs');
 
-    // Click the ground (the bottom left corner of the view, away from the crowd): a box flies.
+    // Click the ground where nothing else is (no panel over the canvas, no character near): a box flies.
+    const ground = await page.evaluate(() => {
+      const canvas = document.querySelector('#scene');
+      const characters = window.gaitlab.characters().map((c) => window.gaitlab.screenPosition(c.id));
+      for (let y = 620; y > 300; y -= 40) {
+        for (let x = 20; x < 1000; x += 40) {
+          if (document.elementFromPoint(x, y) !== canvas) continue;
+          if (characters.every((p) => !p || Math.hypot(p.x - x, p.y - y) > 120)) return { x, y };
+        }
+      }
+      return null;
+    });
+    assert.ok(ground, 'some ground is visible');
     const bodies = (await stats(page)).bodies;
-    await page.mouse.click(60, 600);
+    await page.mouse.click(ground.x, ground.y);
     await page.waitForFunction((n) => window.gaitlab.stats().bodies === n + 1, bodies, { timeout: PAGE_TIMEOUT });
+
+    // Deselect (Esc), which folds the gait editors away from the view.
+    await page.keyboard.press('Escape');
+    await page.waitForFunction(() => window.gaitlab.stats().selected === null, null, { timeout: PAGE_TIMEOUT });
 
     // Drag the biped #0's pelvis upwards and hold it while the simulation steps: it stays up,
     // while biped #2, untouched and not walking yet, sinks (or, walking, stays at its height).
@@ -294,10 +333,10 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const after = await stepTo(page, 90);
     await page.screenshot({ path: path.join(resultsDir, 'drag.png') });
     await page.mouse.up();
+    assert.equal((await stats(page)).selected, null, 'a drag does not select');
     const y0 = after.find((c) => c.id === 0).position[1];
     const y2 = after.find((c) => c.id === 2).position[1];
     assert.ok(y0 > y2 + 0.2, `the dragged biped was pulled up (${y0.toFixed(2)} m against ${y2.toFixed(2)} m)`);
-    assert.equal((await stats(page)).selected, 1, 'a drag does not change the selection');
     assert.deepEqual(problems, [], 'no page errors');
     await page.close();
   });
@@ -322,6 +361,13 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const after = await page.evaluate(() => window.gaitlab.getGait(0));
     assert.notDeepEqual(after.params[name], before.params[name], `${name} changed in the running simulation`);
     assert.deepEqual(after.params[name].filter((_, k) => k !== 1), before.params[name].filter((_, k) => k !== 1), 'only knot 2 moved');
+    // Undo puts the knot back in the running simulation; redo moves it again.
+    await page.getByRole('button', { name: 'Undo' }).click();
+    await page.waitForTimeout(800);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params[name], before.params[name], 'undo');
+    await page.getByRole('button', { name: 'Redo' }).click();
+    await page.waitForTimeout(800);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params[name], after.params[name], 'redo');
     await page.locator('.editors').screenshot({ path: path.join(resultsDir, 'editors.png') });
     await page.screenshot({ path: path.join(resultsDir, 'demo-editing.png') });
 
@@ -329,12 +375,16 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const url = await page.evaluate(() => window.gaitlab.shareUrl(0));
     assert.match(url, /#gait=1\.\d+\.[A-Za-z0-9_-]+$/);
     const shared = await openPage(url);
+    await shared.page.getByRole('status').getByText(/gait loaded from the link/).waitFor({ timeout: PAGE_TIMEOUT });
     await ready(shared.page);
-    await shared.page.waitForTimeout(1500);
     const bipedId = (await shared.page.evaluate(() => window.gaitlab.characters())).find((c) => c.type === 'biped').id;
     const received = await shared.page.evaluate((id) => window.gaitlab.getGait(id), bipedId);
     assert.deepEqual(received.params, after.params, 'the link reproduces the parameters exactly');
-    assert.match(await shared.page.getByRole('status').innerText(), /gait loaded from the link/);
+    // A biped added now walks with the shared gait too, not with the preset.
+    await shared.page.getByRole('button', { name: 'Add characters' }).click();
+    await shared.page.waitForFunction(() => window.gaitlab.characters().length === 3, null, { timeout: PAGE_TIMEOUT });
+    const added = Math.max(...(await shared.page.evaluate(() => window.gaitlab.characters())).map((c) => c.id));
+    assert.deepEqual((await shared.page.evaluate((id) => window.gaitlab.getGait(id), added)).params, after.params, 'added biped');
     assert.deepEqual(shared.problems, [], 'no page errors on the shared page');
     await shared.page.close();
 
@@ -419,26 +469,30 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await bad.close();
   });
 
-  it('runs from a static host without isolation headers, through the service worker, and says so', { timeout: TEST_TIMEOUT }, async () => {
-    const proxy = await startStrippingProxy(server.url);
+  it('runs the built page from a static host without isolation headers, through the service worker, and says so', { timeout: TEST_TIMEOUT }, async () => {
+    const webDir = path.join(repoDir, 'build', 'web');
+    assert.ok(fs.existsSync(path.join(webDir, 'index.html')), 'build/web/index.html exists (npm run build)');
+    const host = await startStaticHost(webDir);
     try {
-      const { page, problems } = await openPage(`${proxy.url}?characters=2`);
+      const { page, problems } = await openPage(`${host.url}?characters=2`);
       // The first load installs coi-serviceworker and reloads itself once.
       await page.waitForFunction(() => window.crossOriginIsolated === true, null, { timeout: PAGE_TIMEOUT, polling: 250 });
       const s = await ready(page);
       assert.equal(s.isolation, 'service worker');
       assert.match(await page.getByTestId('hud').innerText(), /isolated by service worker/);
+      const t0 = s.simTime;
+      await page.waitForFunction((t) => window.gaitlab.stats().simTime > t + 0.2, t0, { timeout: PAGE_TIMEOUT });
       await page.screenshot({ path: path.join(resultsDir, 'service-worker.png') });
-      // Messages from before the reload (the page telling what it does) are not errors.
+      // Requests cut short by the reload are not errors.
       assert.deepEqual(problems.filter((p) => !p.includes('net::ERR_ABORTED')), [], 'no page errors');
       await page.close();
     } finally {
-      await proxy.close();
+      await host.close();
     }
   });
 
   it('explains itself instead of a blank page when neither headers nor a service worker isolate it', { timeout: TEST_TIMEOUT }, async () => {
-    const proxy = await startStrippingProxy(server.url);
+    const host = await startStaticHost(path.join(repoDir, 'build', 'web'));
     // A plain-http host by name: not a secure context, so no service worker may be installed
     // (a static site on http://, as opposed to localhost or https).
     const browser = await chromium.launch({
@@ -450,7 +504,7 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
       const page = await browser.newPage({ viewport: { width: 1024, height: 640 } });
       const problems = [];
       page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
-      await page.goto(proxy.url.replace('127.0.0.1', 'gaitlab.test'), { waitUntil: 'load', timeout: PAGE_TIMEOUT });
+      await page.goto(`http://gaitlab.test:${host.port}/`, { waitUntil: 'load', timeout: PAGE_TIMEOUT });
       assert.equal(await page.evaluate(() => window.isSecureContext), false);
       assert.equal(await page.evaluate(() => window.crossOriginIsolated), false);
       const notice = page.getByRole('alert');
@@ -466,7 +520,7 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
       assert.deepEqual(problems, [], 'no page errors');
     } finally {
       await browser.close();
-      await proxy.close();
+      await host.close();
     }
   });
 });

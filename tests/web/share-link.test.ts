@@ -193,11 +193,12 @@ describe('gait links', () => {
         return { ...g, params: hip === undefined ? rest : { ...rest, 'gains.hipKp': hip } };
       },
     };
-    const old = { format: 'gaitlab-gait', version: 1, character: 'biped', params: { 'gains.hipStiffness': 450, period: 1.1 } };
+    const { 'gains.hipKp': _, ...others } = presetGait(schema, 'biped').params;
+    const old = { format: 'gaitlab-gait', version: 1, character: 'biped', params: { ...others, 'gains.hipStiffness': 450 } };
     const hash = await encodeGaitHash(old as unknown as GaitFile);
     const migrated = await decodeGaitHash(hash, newSchema, migrations);
     expect(migrated.version).toBe(2);
-    expect(migrated.params).toEqual({ 'gains.hipKp': 450, period: 1.1 });
+    expect(migrated.params).toEqual({ ...others, 'gains.hipKp': 450 });
     // Without a migration for that version, the link is refused rather than misread.
     expect((await decodeGaitHash(hash, newSchema, {}).catch((e: GaitError) => e.problem))).toBe('unknown-version');
   });
@@ -225,13 +226,11 @@ describe('base64url and CRC-32', () => {
 });
 
 describe('gait files', () => {
-  it('accept partial gaits and keep meta', () => {
-    const gait = parseGait(
-      { format: 'gaitlab-gait', version: 1, character: 'biped', params: { period: 1 }, meta: { author: 'x' } },
-      schema,
-    );
-    expect(gait.params).toEqual({ period: 1 });
-    expect(gait.meta).toEqual({ author: 'x' });
+  it('keep meta, and refuse gaits with a parameter missing', () => {
+    const full = presetGait(schema, 'biped');
+    expect(parseGait({ ...full, meta: { author: 'x' } }, schema).meta).toEqual({ author: 'x' });
+    const { period: _, ...partial } = full.params;
+    expect(() => parseGait({ ...full, params: partial }, schema)).toThrow('parameter "period" is missing');
   });
 
   it('refuse what is not an object', () => {

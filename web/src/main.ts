@@ -325,11 +325,23 @@ if (!window.crossOriginIsolated) {
     requestAnimationFrame(frame);
   };
 
-  const resize = () => activeStage.resize();
+  const resize = () => {
+    // Keep the crowd clear of the control panel on wide windows.
+    activeStage.rightInset = window.innerWidth > 700 ? panel.gui.domElement.offsetWidth + 10 : 0;
+    activeStage.resize();
+  };
   window.addEventListener('resize', resize);
   window.addEventListener('keydown', onKey);
   resize();
   requestAnimationFrame(frame);
+
+  // Dynamic resolution: every 2 s, a frame rate below 24 FPS lowers the render scale and one
+  // above 50 raises it again (the thresholds far apart, so it does not oscillate).
+  setInterval(() => {
+    if (document.visibilityState !== 'visible' || fpsMeter.rate <= 0) return;
+    if (fpsMeter.rate < 24 && activeStage.scale > 0.35) activeStage.setRenderScale(activeStage.scale * 0.75);
+    else if (fpsMeter.rate > 50 && activeStage.scale < 1) activeStage.setRenderScale(activeStage.scale / 0.75);
+  }, 2000);
 
   setInterval(() => {
     // A worker blocked inside the module (e.g. waiting on a pthread that cannot start) cannot
@@ -347,6 +359,7 @@ if (!window.crossOriginIsolated) {
       threads: state.threads,
       mode: isolationMode() === 'service worker' ? 'multi-threaded (isolated by service worker)' : 'multi-threaded (isolated by headers)',
       drawCalls: state.drawCalls,
+      renderScale: activeStage.scale,
       paused: state.paused,
       timeScale: state.timeScale,
       selected: selected ? `${selected.type} #${selected.id}${selected.fallen ? ' (down)' : ''}` : null,

@@ -65,13 +65,41 @@ export class Stage {
     this.followTarget();
   }
 
+  /** Drawing-buffer pixels per CSS pixel: the device's ratio (at most 2) times the render scale. */
+  private renderScale = 1;
+
+  /**
+   * Dynamic resolution: a GPU that cannot keep up (a software rasteriser, an old laptop) draws
+   * fewer pixels rather than fewer frames. `scale` is relative to the device pixel ratio.
+   */
+  setRenderScale(scale: number): void {
+    this.renderScale = Math.min(1, Math.max(0.35, scale));
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2) * this.renderScale);
+    this.resize();
+  }
+
+  get scale(): number {
+    return this.renderScale;
+  }
+
+  /**
+   * CSS pixels on the right covered by a panel: the view's centre moves left by half of it, so
+   * what the camera looks at is in the middle of the part of the canvas one can see.
+   */
+  rightInset = 0;
+
   /** Matches the drawing buffer and projection to the canvas's CSS size. */
   resize(): void {
     const canvas = this.renderer.domElement;
     const width = canvas.clientWidth || window.innerWidth;
     const height = canvas.clientHeight || window.innerHeight;
     this.renderer.setSize(width, height, false);
-    this.camera.aspect = width / Math.max(1, height);
+    // The canvas is a window onto a view 2·inset wider, offset so that its centre sits `inset`
+    // to the left of the canvas's centre (pixels stay square: the aspect is the wider view's).
+    const inset = Math.max(0, Math.min(this.rightInset, width / 3));
+    this.camera.aspect = (width + inset) / Math.max(1, height);
+    if (inset > 0) this.camera.setViewOffset(width + inset, height, inset, 0, width, height);
+    else this.camera.clearViewOffset();
     this.camera.updateProjectionMatrix();
   }
 

@@ -79,9 +79,9 @@ const show = (x: number) => (Number.isFinite(x) ? String(Number(x.toPrecision(6)
  * Checks `data` (parsed JSON) against the schema and returns it as a GaitFile of the schema's
  * version (migrated if it was older), or throws a GaitError naming the first problem.
  *
- * Parameters the gait does not mention keep the preset's values when applied (a partial gait
- * is valid); parameters the schema does not know are refused, because silently dropping one
- * would run something other than what the author shared.
+ * Every parameter of the schema must be there, and no other: a gait that leaves one out, or
+ * names one the schema does not know, is refused (as the native reader, gait/params_io.h, does),
+ * because filling in or dropping a value would run something other than what the author made.
  */
 export function parseGait(
   data: unknown,
@@ -143,6 +143,9 @@ export function parseGait(
         );
       }
     }
+  }
+  for (const name of entries.keys()) {
+    if (!(name in gait.params)) throw new GaitError('invalid', `parameter "${name}" is missing`);
   }
   return gait;
 }

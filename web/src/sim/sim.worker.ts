@@ -9,6 +9,7 @@ import { gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule
 import {
   errorMessage,
   type CharacterStatus,
+  type CharacterType,
   type SceneCommand,
   type SimCommand,
   type SimEvent,
@@ -85,6 +86,11 @@ let nextSlot = 0;
 const START_SPEED = 1.0;
 const START_TURN = 0;
 let lastGoal = { speed: START_SPEED, turn: START_TURN };
+/**
+ * The gait last given to every character of a type (setParams with id 'all'): characters added
+ * later, and the characters of a new scene, walk with it too.
+ */
+const typeGaits: Partial<Record<CharacterType, string>> = {};
 
 // Step timing accumulated between statistics reports.
 let stepWallMs = 0;
@@ -115,6 +121,14 @@ function newScene(): void {
   addCharacters(options.characters, (i) => (i % 2 === 0 ? 'biped' : 'quadruped'));
   sim.setGoal(-1, lastGoal.speed, lastGoal.turn);
   sim.setAutoReset(autoResetSeconds);
+  // What the new scene keeps from the session (goal, auto-reset, gaits of a whole type) opens
+  // its command log, so that the log alone with the seed still replays the run.
+  const carried: SceneCommand[] = [
+    { type: 'setGoal', id: 'all', speed: lastGoal.speed, turn: lastGoal.turn },
+    { type: 'autoReset', seconds: autoResetSeconds },
+    ...Object.entries(typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
+  ];
+  for (const command of carried) commandLog.push({ step: 0, command });
   // Publish an initial frame (zero steps) so the first thing drawn is the scene as spawned.
   sim.step(0);
   generation += 1;
@@ -141,9 +155,12 @@ function addCharacters(count: number, type: (i: number) => 'biped' | 'quadruped'
     const x = ((slot % gridColumns) - (gridColumns - 1) / 2) * SPACING_X;
     // Rows beyond the initial crowd continue behind it (−z), away from where the crowd walks.
     const z = ((rows - 1) / 2 - Math.floor(slot / gridColumns)) * SPACING_Z;
-    const id = sim.spawn(Kind[type(i)], x, z, 0);
+    const kind = type(i);
+    const id = sim.spawn(Kind[kind], x, z, 0);
     if (id < 0) break; // the render buffer is full
     sim.setGoal(id, lastGoal.speed, lastGoal.turn);
+    const gait = typeGaits[kind];
+    if (gait && sim.setParams(id, Kind[kind], gait)) delete typeGaits[kind]; // refused: back to the preset
   }
 }
 
@@ -187,6 +204,7 @@ function apply(command: SceneCommand): void {
     case 'setParams': {
       const problem = sim.setParams(command.id === 'all' ? -1 : command.id, Kind[command.character], command.json);
       if (problem) post({ type: 'commandError', message: `the gait was not applied: ${problem}` });
+      else if (command.id === 'all') typeGaits[command.character] = command.json;
       return;
     }
     default: {

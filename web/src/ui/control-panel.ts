@@ -85,6 +85,7 @@ export class ControlPanel {
       }),
     );
 
+    ground.close(); // one fixed choice for now: keep the space for the gait
     this.gaitFolder = this.gui.addFolder('Gait');
     this.setSelection(null);
   }

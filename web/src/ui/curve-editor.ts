@@ -85,6 +85,7 @@ export class CurveEditor {
 
   /** Moves the phase marker (null hides it). */
   setPhase(phase: number | null): void {
+    if (phase === this.phase) return;
     this.phase = phase;
     this.draw();
   }

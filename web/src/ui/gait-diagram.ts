@@ -30,6 +30,34 @@ const GRAB = 7;
 
 const frac = (x: number) => x - Math.floor(x);
 
+/** Stance of a leg as phases in [0, 1): touch-down `start` and lift-off `end` (end < start when it wraps). */
+export function stanceOf(l: LegTiming): { start: number; end: number } {
+  return { start: frac(l.stepTrigger + 1 - l.dutyFactor), end: frac(l.stepTrigger) };
+}
+
+/**
+ * A leg's timing after dragging part of its stance bar to gait phase `phase`: its lift-off end
+ * ('end': touch-down stays), its touch-down end ('start': lift-off stays) or the whole bar
+ * ('move', grabbed at `grabPhase`: duty factor stays). Duty factors stay within `bounds`.
+ */
+export function dragTiming(
+  original: LegTiming,
+  what: 'start' | 'end' | 'move',
+  phase: number,
+  grabPhase: number,
+  [lo, hi]: [number, number],
+): LegTiming {
+  const clampDuty = (d: number) => Math.min(hi, Math.max(lo, d));
+  if (what === 'end') {
+    const touchDown = stanceOf(original).start;
+    // A zero-length stance is read as a whole cycle (then clamped), never as nothing.
+    const duty = clampDuty(frac(phase - touchDown) || 1);
+    return { ...original, dutyFactor: duty, stepTrigger: frac(touchDown + duty) };
+  }
+  if (what === 'start') return { ...original, dutyFactor: clampDuty(frac(original.stepTrigger - phase) || 1) };
+  return { ...original, stepTrigger: frac(original.stepTrigger + phase - grabPhase) };
+}
+
 export class GaitDiagram {
   readonly element: HTMLElement;
   private readonly canvas: HTMLCanvasElement;
@@ -65,6 +93,7 @@ export class GaitDiagram {
   }
 
   setPhase(phase: number | null): void {
+    if (phase === this.phase) return;
     this.phase = phase;
     this.draw();
   }
@@ -83,7 +112,7 @@ export class GaitDiagram {
 
   /** Stance start (touch-down) and end (lift-off) as phases in [0, 1), end possibly < start (wraps). */
   private stance(l: LegTiming): { start: number; end: number } {
-    return { start: frac(l.stepTrigger + 1 - l.dutyFactor), end: frac(l.stepTrigger) };
+    return stanceOf(l);
   }
 
   private local(e: PointerEvent) {
@@ -108,23 +137,7 @@ export class GaitDiagram {
     const d = this.drag;
     if (!d) return;
     const phase = this.phaseAt(this.local(e).x);
-    const [lo, hi] = this.options.dutyBounds;
-    const o = d.original;
-    const l = this.legs[d.leg];
-    const touchDown = frac(o.stepTrigger + 1 - o.dutyFactor);
-    if (d.what === 'end') {
-      // Lift-off follows the pointer; touch-down stays: D is the stance from touch-down to here.
-      const duty = Math.min(hi, Math.max(lo, frac(phase - touchDown) || 1));
-      l.dutyFactor = duty;
-      l.stepTrigger = frac(touchDown + duty);
-    } else if (d.what === 'start') {
-      // Touch-down follows the pointer; lift-off (the step trigger) stays.
-      l.dutyFactor = Math.min(hi, Math.max(lo, frac(o.stepTrigger - phase) || 1));
-      l.stepTrigger = o.stepTrigger;
-    } else {
-      l.stepTrigger = frac(o.stepTrigger + phase - d.grabPhase);
-      l.dutyFactor = o.dutyFactor;
-    }
+    this.legs[d.leg] = dragTiming(d.original, d.what, phase, d.grabPhase, this.options.dutyBounds);
     this.draw();
     this.options.onChange(this.legs.map((x) => ({ ...x })), false);
   }

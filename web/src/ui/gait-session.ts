@@ -13,6 +13,7 @@ import {
   CHARACTER_TYPES,
   GaitError,
   parseGait,
+  sameParams,
   type CharacterType,
   type GaitFile,
   type ParamSchema,
@@ -23,15 +24,33 @@ import { decodeGaitHash, encodeGaitHash, hasGait } from '../share/link';
 import type { CharacterStatus } from '../sim/protocol';
 import type { SimClient } from '../sim/sim-client';
 
+/**
+ * Footfall patterns of the quadruped (Hildebrand's gait diagrams, as in the thesis's Figure 2.1):
+ * per leg the step trigger (phase of lift-off) and duty factor. The preset is a trot.
+ */
+const QUADRUPED_GAITS: Record<string, Record<string, [number, number]>> = {
+  // Lateral-sequence walk: hind left, fore left, hind right, fore right a quarter cycle apart,
+  // three feet on the ground most of the time.
+  walk: { backLeft: [0, 0.75], frontLeft: [0.25, 0.75], backRight: [0.5, 0.75], frontRight: [0.75, 0.75] },
+  // Diagonal pairs together.
+  trot: { frontLeft: [0, 0.6], backRight: [0, 0.6], frontRight: [0.5, 0.6], backLeft: [0.5, 0.6] },
+  // Lateral pairs together.
+  pace: { frontLeft: [0, 0.6], backLeft: [0, 0.6], frontRight: [0.5, 0.6], backRight: [0.5, 0.6] },
+  // Fore pair, then hind pair.
+  bound: { frontLeft: [0, 0.5], frontRight: [0, 0.5], backLeft: [0.5, 0.5], backRight: [0.5, 0.5] },
+};
+
 /** Undo steps kept per session. */
 const UNDO_LIMIT = 100;
 
-/** The duty factor / step trigger pairs of the schema, one per leg (prefix "legs.<leg>."). */
+/**
+ * The duty factor / step trigger pairs of the schema, one per leg: "<leg>.dutyFactor" and
+ * "<leg>.stepTrigger" (the leg's name is the last part before them).
+ */
 function legTimings(entries: SchemaEntry[]): { leg: string; duty: SchemaEntry; trigger: SchemaEntry }[] {
   const out: { leg: string; duty: SchemaEntry; trigger: SchemaEntry }[] = [];
   for (const duty of entries) {
-    const m = /^(.*)\.?dutyFactor$/.exec(duty.name);
-    if (!m || duty.knots !== 1) continue;
+    if (!duty.name.endsWith('dutyFactor') || duty.knots !== 1) continue;
     const prefix = duty.name.slice(0, duty.name.length - 'dutyFactor'.length);
     const trigger = entries.find((e) => e.name === `${prefix}stepTrigger`);
     if (trigger) out.push({ leg: prefix.replace(/\.$/, '').split('.').pop() || prefix, duty, trigger });
@@ -40,8 +59,10 @@ function legTimings(entries: SchemaEntry[]): { leg: string; duty: SchemaEntry; t
 }
 
 export class GaitSession {
-  private readonly editorsPanel: HTMLElement;
+  /** The editors, folded into their heading unless a character is selected (or the user opens them). */
+  private readonly editorsPanel: HTMLDetailsElement;
   private readonly heading: HTMLElement;
+  private readonly content: HTMLElement;
   /** What is edited: one character, or every character of a type. */
   private target: { id: number | 'all'; character: CharacterType } = { id: 'all', character: 'biped' };
   private gait: GaitFile | null = null;
@@ -93,6 +114,11 @@ export class GaitSession {
       .onChange((t: CharacterType) => {
         if (this.target.id === 'all') void this.load({ id: 'all', character: t });
       });
+    const pattern = { quadrupedGait: 'trot' };
+    folder
+      .add(pattern, 'quadrupedGait', Object.keys(QUADRUPED_GAITS))
+      .name('quadruped gait')
+      .onChange((name: string) => void this.setQuadrupedGait(name));
     folder.add({ undo: () => this.undo() }, 'undo').name('Undo');
     folder.add({ redo: () => this.redo() }, 'redo').name('Redo');
     folder.add({ reset: () => void this.resetToPreset() }, 'reset').name('Reset to preset');
@@ -101,12 +127,13 @@ export class GaitSession {
     folder.add({ exportGait: () => this.exportFile() }, 'exportGait').name('Export JSON');
     folder.add({ importGait: () => this.importFile() }, 'importGait').name('Import JSON');
 
-    this.editorsPanel = document.createElement('div');
+    this.editorsPanel = document.createElement('details');
     this.editorsPanel.className = 'editors';
     this.editorsPanel.setAttribute('aria-label', 'gait editors');
-    this.heading = document.createElement('div');
+    this.heading = document.createElement('summary');
     this.heading.className = 'editors-heading';
-    this.editorsPanel.append(this.heading);
+    this.content = document.createElement('div');
+    this.editorsPanel.append(this.heading, this.content);
     document.body.append(this.editorsPanel);
 
     window.addEventListener('keydown', (e) => {
@@ -129,30 +156,48 @@ export class GaitSession {
   /** The selected character (or none: every character of the chosen type). */
   select(status: CharacterStatus | null): void {
     const target = status ? { id: status.id, character: status.type } : { id: 'all' as const, character: this.controls.editType };
+    // Open while a character is selected: selecting one is how people ask to edit it.
+    this.editorsPanel.open = status !== null;
     if (target.id === this.target.id && target.character === this.target.character) return;
     void this.load(target);
   }
 
   /** The statistics report: the phase marker follows the selected character (or the first of the type). */
   tick(selected: CharacterStatus | null, all: CharacterStatus[] = []): void {
+    this.characters = all;
     const source = selected ?? all.find((c) => c.type === this.target.character) ?? null;
     const period = typeof this.gait?.params.period === 'number' ? (this.gait.params.period as number) : 1;
     this.phaseSource = source ? { phase: source.phase, at: performance.now(), period } : null;
   }
 
-  /** Called every animation frame: the phase moves smoothly between the worker's reports. */
+  /**
+   * Called every animation frame: the phase marker moves smoothly between the worker's reports.
+   * Redrawn at most 20 times a second, and only in editors on screen (a folded group's are not):
+   * a 2D canvas redraw is cheap, twenty of them every frame are not.
+   */
   animate(running: boolean): void {
+    const now = performance.now();
+    if (now - this.lastMarker < 50) return;
+    this.lastMarker = now;
     const s = this.phaseSource;
-    const phase = s ? (s.phase + (running ? (performance.now() - s.at) / 1000 / s.period : 0)) % 1 : null;
-    for (const c of this.curves.values()) c.setPhase(phase);
+    const phase = s ? (s.phase + (running ? (now - s.at) / 1000 / s.period : 0)) % 1 : null;
+    for (const c of this.curves.values()) if (c.element.offsetParent !== null) c.setPhase(phase);
     this.diagram?.setPhase(phase);
   }
+
+  private lastMarker = 0;
+  /** The crowd as last reported. */
+  private characters: CharacterStatus[] = [];
 
   private async load(target: { id: number | 'all'; character: CharacterType }): Promise<void> {
     const token = ++this.loadToken;
     this.target = target;
     try {
-      const gait = target.id === 'all' ? await this.preset(target.character) : await this.gaitOf(target.id);
+      // Every character of a type walks with the same gait unless one was edited alone: start
+      // from the first one's (the preset only when there is none of that type).
+      const first = this.characters.find((c) => c.type === target.character);
+      const id = target.id === 'all' ? first?.id : target.id;
+      const gait = id === undefined ? await this.preset(target.character) : await this.gaitOf(id);
       if (token !== this.loadToken) return;
       this.gait = gait;
       this.undoStack = [];
@@ -198,7 +243,7 @@ export class GaitSession {
     const entries = this.entries();
     const who = this.target.id === 'all' ? `every ${this.target.character}` : `${this.target.character} #${this.target.id}`;
     this.heading.textContent = `Gait of ${who}`;
-    this.editorsPanel.querySelectorAll('.curve-editor, .gait-diagram, details').forEach((n) => n.remove());
+    this.content.replaceChildren();
     this.curves.clear();
 
     this.diagramLegs = legTimings(entries);
@@ -217,7 +262,7 @@ export class GaitSession {
           this.edit(params, done);
         },
       });
-      this.editorsPanel.append(this.diagram.element);
+      this.content.append(this.diagram.element);
     } else {
       this.diagram = null;
     }
@@ -247,7 +292,7 @@ export class GaitSession {
         this.curves.set(e.name, editor);
         details.append(editor.element);
       }
-      this.editorsPanel.append(details);
+      this.content.append(details);
     }
 
     // Scalars in the lil-gui panel, a sub-folder per group, descriptions as tooltips.
@@ -298,6 +343,9 @@ export class GaitSession {
   /** Keeps the state before an edit for undo (once per gesture). */
   private remember(): void {
     if (!this.gait) return;
+    // One gesture can announce itself twice (a slider's press and its focus): keep one step.
+    const top = this.undoStack[this.undoStack.length - 1];
+    if (top && sameParams(top, this.gait)) return;
     this.undoStack.push(structuredClone(this.gait));
     if (this.undoStack.length > UNDO_LIMIT) this.undoStack.shift();
     this.redoStack = [];
@@ -356,10 +404,34 @@ export class GaitSession {
       this.build();
     } else {
       this.remember();
-      this.gait = { ...gait, params: { ...(this.gait?.params ?? {}), ...gait.params } };
+      this.gait = gait;
       this.refresh();
     }
     this.apply(this.gait!);
+  }
+
+  /**
+   * Sets a footfall pattern's step triggers and duty factors: on the selected character if it is
+   * a quadruped, otherwise on every quadruped.
+   */
+  private async setQuadrupedGait(name: string): Promise<void> {
+    const pattern = QUADRUPED_GAITS[name];
+    if (!pattern) return;
+    if (this.target.character !== 'quadruped') {
+      this.controls.editType = 'quadruped';
+      this.folder.controllersRecursive().forEach((c) => c.updateDisplay());
+      await this.load({ id: 'all', character: 'quadruped' });
+    }
+    const params: Record<string, ParamValue> = {};
+    for (const l of this.diagramLegs) {
+      const timing = pattern[l.leg];
+      if (!timing) continue;
+      params[l.trigger.name] = timing[0];
+      params[l.duty.name] = Math.min(l.duty.max, Math.max(l.duty.min, timing[1]));
+    }
+    this.remember();
+    this.edit(params, true);
+    this.refresh();
   }
 
   // ---- sharing ----
@@ -398,10 +470,7 @@ export class GaitSession {
       this.target = { id: 'all', character: gait.character };
       this.controls.editType = gait.character;
       this.folder.controllersRecursive().forEach((c) => c.updateDisplay());
-      // Over the preset, so a partial gait leaves the rest at preset values.
-      const preset = await this.preset(gait.character);
-      const full = { ...preset, params: { ...preset.params, ...gait.params } };
-      this.client.send({ type: 'scene', command: { type: 'setParams', id: 'all', character: gait.character, json: JSON.stringify(full) } });
+      this.client.send({ type: 'scene', command: { type: 'setParams', id: 'all', character: gait.character, json: JSON.stringify(gait) } });
       this.overlay.message(`Shared ${gait.character} gait loaded from the link; every ${gait.character} walks with it.`);
     } catch (error) {
       const text = error instanceof GaitError ? error.message : `unexpected problem (${String(error)})`;

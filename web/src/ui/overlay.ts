@@ -11,6 +11,8 @@ export interface HudFigures {
   /** How the page gets its threads: see isolationMode() in main.ts. */
   mode: string;
   drawCalls: number;
+  /** Dynamic resolution's scale (1 = full). */
+  renderScale: number;
   paused: boolean;
   timeScale: number;
   selected: string | null;
@@ -59,6 +61,7 @@ export class Overlay {
       f.mode,
       `${f.drawCalls} draw calls`,
     ];
+    if (f.renderScale < 1) parts.push(`render scale ${Math.round(f.renderScale * 100)}%`);
     if (f.selected) parts.push(`selected: ${f.selected}`);
     this.line.textContent = parts.join(' · ');
   }
@@ -77,7 +80,7 @@ export class Overlay {
     item.append(close);
     this.messages.append(item);
     // Informational messages go by themselves; problems stay until read.
-    if (kind === 'info') setTimeout(() => item.remove(), 6000);
+    if (kind === 'info') setTimeout(() => item.remove(), 12_000);
   }
 
   /** Shows a problem in plain words on the page (not only in the console). */

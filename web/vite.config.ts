@@ -85,7 +85,7 @@ function gaitlabWasm(): Plugin {
 export default defineConfig({
   root: webDir,
   publicDir: path.join(repoDir, 'public'),
-  // Several HTML entry points (index.html now, bench.html later); no SPA fallback, so a missing
+  // Several HTML entry points (the demo, index.html, and the performance page, bench.html); no SPA fallback, so a missing
   // file is a 404 instead of the demo page.
   appType: 'mpa',
   plugins: [gaitlabWasm()],
@@ -108,6 +108,7 @@ export default defineConfig({
     rolldownOptions: {
       input: {
         index: path.join(webDir, 'index.html'),
+        bench: path.join(webDir, 'bench.html'),
       },
     },
   },

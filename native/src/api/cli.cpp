@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "api/cli_bench.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::api {
@@ -25,6 +26,7 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  walk       one character walks; prints what it achieved (speed, drift, duty factors...)\n"
+    "  bench      the thesis's performance experiment on crowds (gaitlab bench --help)\n"
     "\n"
     "walk options:\n"
     "  --character biped|quadruped   (default biped)\n"
@@ -169,6 +171,7 @@ int runCli(int argc, char** argv) {
     return 0;
   }
   if (cmd == "walk") return walk(argc, argv);
+  if (cmd == "bench") return runBenchCli(argc, argv);
   return usageError("unknown command '" + cmd + "'");
 }
 

@@ -8,8 +8,17 @@
 
 namespace gaitlab::physics {
 
-World::World()
-    : config_(std::make_unique<btDefaultCollisionConfiguration>()),
+namespace {
+btDefaultCollisionConstructionInfo poolSizes(int contactPool) {
+  btDefaultCollisionConstructionInfo info;
+  info.m_defaultMaxPersistentManifoldPoolSize = contactPool;
+  info.m_defaultMaxCollisionAlgorithmPoolSize = contactPool;
+  return info;
+}
+}  // namespace
+
+World::World(int contactPool)
+    : config_(std::make_unique<btDefaultCollisionConfiguration>(poolSizes(contactPool))),
       dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
@@ -75,6 +84,23 @@ void World::removeBody(btRigidBody* body) {
   shapes_.erase(std::remove_if(shapes_.begin(), shapes_.end(),
                                [&](const auto& s) { return s.get() == shape; }),
                 shapes_.end());
+}
+
+void World::moveBodyTo(btRigidBody* body, World& other) {
+  auto it = std::find(bodies_.begin(), bodies_.end(), body);
+  if (it == bodies_.end() || &other == this) return;
+  const int group = body->getBroadphaseHandle()->m_collisionFilterGroup;
+  const int mask = body->getBroadphaseHandle()->m_collisionFilterMask;
+  dynamics_->removeRigidBody(body);  // also drops its contact manifolds in this world
+  bodies_.erase(it);
+  btCollisionShape* shape = body->getCollisionShape();
+  auto s = std::find_if(shapes_.begin(), shapes_.end(), [&](const auto& p) { return p.get() == shape; });
+  if (s != shapes_.end()) {
+    other.shapes_.push_back(std::move(*s));
+    shapes_.erase(s);
+  }
+  other.dynamics_->addRigidBody(body, group, mask);
+  other.bodies_.push_back(body);
 }
 
 void World::step() {

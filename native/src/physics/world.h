@@ -38,7 +38,11 @@ constexpr int kPhysicsSubsteps = 2;
 
 class World {
  public:
-  World();
+  // Bullet's default collision configuration pre-allocates pools for 4096 contact manifolds and
+  // collision algorithms (about 5 MB). A crowd split over several worlds (sim::Simulation's
+  // physics shards) needs only a share of that per world.
+  static constexpr int kDefaultContactPool = 4096;
+  explicit World(int contactPool = kDefaultContactPool);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -50,6 +54,9 @@ class World {
                       const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
                       int group, int mask, double friction);
   void removeBody(btRigidBody* body);
+  // Moves a loose body (a prop: no constraints attached) and its shape into `other`, keeping its
+  // state and collision filter. Its contact manifolds stay behind and are rebuilt in `other`.
+  void moveBodyTo(btRigidBody* body, World& other);
 
   // One fixed step of kFixedStep seconds, as kPhysicsSubsteps Bullet steps (no interpolation:
   // deterministic).

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
+#include <limits>
 #include <new>
 
 #include "gait/defaults.h"
@@ -41,9 +42,35 @@ struct Fnv1a {
 
 }  // namespace
 
-Simulation::Simulation(int threads, uint32_t seed)
+const char* modeName(Mode mode) {
+  switch (mode) {
+    case Mode::Serial: return "serial";
+    case Mode::Controller: return "controller";
+    case Mode::Full: return "full";
+  }
+  return "?";
+}
+
+bool parseMode(const std::string& name, Mode* out) {
+  for (Mode m : {Mode::Serial, Mode::Controller, Mode::Full}) {
+    if (name == modeName(m)) {
+      *out = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+Simulation::Simulation(int threads, uint32_t seed, int shards)
     : biped_(body::makeBiped()), quadruped_(body::makeQuadruped()), pool_(threads),
       seed_(seed ? seed : 1) {
+  if (shards < 1) shards = 1;
+  // A shard holds about 1/S of the crowd's contacts; 256 pooled manifolds cover 20 fallen
+  // quadrupeds (11 boxes each on the ground) before Bullet falls back to the heap.
+  const int pool = shards == 1 ? physics::World::kDefaultContactPool
+                               : std::max(256, physics::World::kDefaultContactPool / shards);
+  for (int s = 0; s < shards; ++s) worlds_.push_back(std::make_unique<physics::World>(pool));
+  shardAgents_.resize(shards);
   // One block: header, two matrix buffers, body info; offsets are relative to the header so the
   // layout reads the same from JavaScript (a 32-bit address space) and from native tests.
   const size_t matrixBytes = sizeof(float) * 16 * kRenderCapacity;
@@ -72,7 +99,7 @@ Simulation::Agent::Agent(physics::World& w, const body::Morphology& m,
 }
 
 Simulation::~Simulation() {
-  agents_.clear();  // constraints and bodies leave the world before it is destroyed
+  agents_.clear();  // constraints and bodies leave the worlds before they are destroyed
 }
 
 void Simulation::setGoal(int i, const gait::Goal& goal) {
@@ -95,6 +122,7 @@ void Simulation::control(Agent& a) {
   };
   a.controller.update(physics::kFixedStep, cs, a.torques.data());
   a.body->applyJointTorques(a.torques.data());
+  ++a.updates;
 }
 
 void Simulation::addRenderBody(btRigidBody* body, const BodyInfo& info) {
@@ -106,17 +134,37 @@ void Simulation::addRenderBody(btRigidBody* body, const BodyInfo& info) {
 int Simulation::spawn(Kind kind, double x, double z, double heading) {
   if (kind == Kind::Box) {
     if (bodyCount() + 1 > kRenderCapacity) return -1;
+    // The prop starts in the shard of the character nearest to it (rehomeProps keeps it there).
+    int shard = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& a : agents_) {
+      const btVector3 p = a->body->body(0)->getCenterOfMassPosition();
+      const double d = (p.x() - x) * (p.x() - x) + (p.z() - z) * (p.z() - z);
+      if (d < best) best = d, shard = a->shard;
+    }
     const Eigen::Vector3d half(0.15, 0.15, 0.15);
-    btRigidBody* b = world_.addBox(
+    btRigidBody* b = worlds_[shard]->addBox(
         half, 4.0, {x, 1.5, z}, Eigen::Quaterniond(Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY())),
         physics::kPropGroup, physics::kPropMask, 0.8);
+    props_.push_back({b, shard});
     addRenderBody(b, {{0.15f, 0.15f, 0.15f}, 0xe0c068ffu, -1, 0});
     return nextId_++;
   }
+  // A character spawned one at a time goes to the least populated shard (the first of equals).
+  int shard = 0;
+  for (int s = 1; s < shards(); ++s)
+    if (shardAgents_[s].size() < shardAgents_[shard].size()) shard = s;
+  return spawnCharacter(kind, x, z, heading, shard);
+}
+
+int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, int shard) {
   const body::Morphology& m = kind == Kind::Biped ? biped_ : quadruped_;
   if (bodyCount() + static_cast<int>(m.segments.size()) > kRenderCapacity) return -1;
-  const double groundY = world_.terrainHeight(x, z);
-  agents_.push_back(std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
+  physics::World& world = *worlds_[shard];
+  const double groundY = world.terrainHeight(x, z);
+  agents_.push_back(std::make_unique<Agent>(world, m, Eigen::Vector3d(x, groundY, z), heading));
+  agents_.back()->shard = shard;
+  shardAgents_[shard].push_back(agents_.back().get());
   const int id = nextId_++;
   const physics::Character& c = *agents_.back()->body;
   for (int i = 0; i < c.segmentCount(); ++i) {
@@ -145,21 +193,79 @@ void Simulation::demoScene(int characters) {
   publish();
 }
 
+void Simulation::crowdScene(Kind kind, int characters, double spacing) {
+  const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(characters))));
+  for (int i = 0; i < characters; ++i) {
+    const double x = (i % columns - (columns - 1) / 2.0) * spacing;
+    const double z = (i / columns - (columns - 1) / 2.0) * spacing;
+    const Kind k = kind == Kind::Box ? (i % 2 == 0 ? Kind::Biped : Kind::Quadruped) : kind;
+    // Contiguous chunks of the grid per shard, split like the thesis's thread chunks (§4.3).
+    int shard = 0;
+    while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
+    spawnCharacter(k, x, z, 0.0, shard);
+  }
+  publish();
+}
+
+void Simulation::stepShard(int shard) {
+  for (Agent* a : shardAgents_[shard]) std::fill(std::begin(a->footContact), std::end(a->footContact), false);
+  worlds_[shard]->step();
+  worlds_[shard]->updateContacts();
+}
+
+void Simulation::rehomeProps() {
+  if (shards() == 1) return;
+  for (Prop& p : props_) {
+    const btVector3 q = p.body->getCenterOfMassPosition();
+    int shard = p.shard;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& a : agents_) {
+      const btVector3 r = a->body->body(0)->getCenterOfMassPosition();
+      const double d = (r.x() - q.x()) * (r.x() - q.x()) + (r.z() - q.z()) * (r.z() - q.z());
+      if (d < best) best = d, shard = a->shard;
+    }
+    if (shard != p.shard) {
+      worlds_[p.shard]->moveBodyTo(p.body, *worlds_[shard]);
+      p.shard = shard;
+    }
+  }
+}
+
 void Simulation::step(int steps) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  const auto controlChunk = [this](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) control(*agents_[i]);
+  };
+  const auto physicsChunk = [this](int begin, int end, int) {
+    for (int s = begin; s < end; ++s) stepShard(s);
+  };
   for (int s = 0; s < steps; ++s) {
-    // The controller loop is the parallel-for (thesis §3.1, §4.3); physics is serial.
-    const auto t0 = std::chrono::steady_clock::now();
-    pool_.parallelFor(characterCount(), [this](int begin, int end, int) {
-      for (int i = begin; i < end; ++i) control(*agents_[i]);
-    });
-    const auto t1 = std::chrono::steady_clock::now();
-    world_.step();
-    const auto t2 = std::chrono::steady_clock::now();
-    controllerSeconds_ += std::chrono::duration<double>(t1 - t0).count();
-    physicsSeconds_ += std::chrono::duration<double>(t2 - t1).count();
-    for (auto& a : agents_) std::fill(std::begin(a->footContact), std::end(a->footContact), false);
-    world_.updateContacts();
+    // The controller loop is the parallel-for (thesis §3.1, §4.3), timed from before the first
+    // thread starts until the last is done (§4.1).
+    const auto t0 = Clock::now();
+    if (mode_ == Mode::Serial) {
+      controlChunk(0, characterCount(), 0);
+    } else {
+      pool_.parallelFor(characterCount(), controlChunk);
+    }
+    const auto t1 = Clock::now();
+    // Physics: the shards one after another, or (full mode) as a second parallel-for. Each shard
+    // computes the same thing either way; only the thread that runs it differs.
+    if (mode_ == Mode::Full) {
+      pool_.parallelFor(shards(), physicsChunk);
+    } else {
+      physicsChunk(0, shards(), 0);
+    }
+    const auto t2 = Clock::now();
+    rehomeProps();
     ++stepIndex_;
+    const auto t3 = Clock::now();
+    lastStep_ = {seconds(t0, t1), seconds(t1, t2), seconds(t0, t3)};
+    controllerSeconds_ += lastStep_.controller;
+    physicsSeconds_ += lastStep_.physics;
   }
   publish();
 }

@@ -7,17 +7,21 @@ const M = { left: 72, right: 200, top: 48, bottom: 56 };
 export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#7f7f7f', '#bcbd22'];
 
 const esc = (s) => String(s).replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
-const num = (v) => (Math.abs(v) >= 100 ? v.toFixed(0) : Math.abs(v) >= 10 ? v.toFixed(1) : Math.abs(v) >= 1 ? v.toFixed(2) : v.toPrecision(2));
+const num = (v) => (Number.isInteger(v) ? String(v) : Math.abs(v) >= 100 ? v.toFixed(0) : Math.abs(v) >= 10 ? v.toFixed(1) : Math.abs(v) >= 1 ? v.toFixed(2) : v.toPrecision(2));
 
-/** "Nice" tick values covering [lo, hi]. */
+/** "Nice" tick values from lo up to the first tick at or above hi. */
 function ticks(lo, hi, count = 6) {
   if (!(hi > lo)) hi = lo + 1;
   const raw = (hi - lo) / count;
   const mag = 10 ** Math.floor(Math.log10(raw));
   const step = [1, 2, 2.5, 5, 10].map((m) => m * mag).find((s) => s >= raw) ?? 10 * mag;
   const out = [];
-  for (let v = Math.ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) out.push(+v.toFixed(12));
-  return out;
+  let v = Math.ceil(lo / step - 1e-9) * step;
+  for (;;) {
+    out.push(+v.toFixed(12));
+    if (v >= hi - step * 1e-9) return out;
+    v += step;
+  }
 }
 
 function frame({ title, subtitle, xLabel, yLabel }, x, y, xTicks, yTicks, body, legend) {

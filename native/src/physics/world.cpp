@@ -9,6 +9,31 @@
 namespace gaitlab::physics {
 
 namespace {
+
+// Bullet's sequential-impulse solver keeps its working arrays from step to step, but grows them
+// whenever a step needs more rows than any step before (a joint reaching a limit adds rows, every
+// new contact point three): a heap allocation in the middle of a step, at a moment nobody chose.
+// This solver sizes them for the worst case of the world's contents instead, once per change of
+// contents (World::step), so that steps in a steady scene allocate nothing (DESIGN.md, parallel
+// execution; tests/native/hot_path_test.cpp).
+class ReservingSolver : public btSequentialImpulseConstraintSolver {
+ public:
+  void reserveFor(int bodies, int joints) {
+    // A 6-DOF joint has at most 12 rows (a limit and a motor per axis); a body touches at most
+    // the ground and a couple of props, 4 points per contact manifold, each point a normal row
+    // and two friction rows.
+    const int jointRows = 12 * joints, contactPoints = 3 * 4 * bodies;
+    m_tmpSolverBodyPool.reserve(bodies + 1);
+    m_tmpConstraintSizesPool.reserve(joints);
+    m_tmpSolverNonContactConstraintPool.reserve(jointRows);
+    m_orderNonContactConstraintPool.reserve(jointRows);
+    m_tmpSolverContactConstraintPool.reserve(contactPoints);
+    m_orderTmpConstraintPool.reserve(contactPoints);
+    m_tmpSolverContactFrictionConstraintPool.reserve(2 * contactPoints);
+    m_orderFrictionConstraintPool.reserve(2 * contactPoints);
+  }
+};
+
 btDefaultCollisionConstructionInfo poolSizes(int contactPool) {
   btDefaultCollisionConstructionInfo info;
   info.m_defaultMaxPersistentManifoldPoolSize = contactPool;
@@ -21,7 +46,7 @@ World::World(int contactPool)
     : config_(std::make_unique<btDefaultCollisionConfiguration>(poolSizes(contactPool))),
       dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
-      solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
+      solver_(std::make_unique<ReservingSolver>()),
       dynamics_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
                                                           solver_.get(), config_.get())) {
   dynamics_->setGravity(btVector3(0, -9.81f, 0));
@@ -104,6 +129,12 @@ void World::moveBodyTo(btRigidBody* body, World& other) {
 }
 
 void World::step() {
+  const int bodies = dynamics_->getNumCollisionObjects(), joints = dynamics_->getNumConstraints();
+  if (bodies != reservedBodies_ || joints != reservedJoints_) {
+    static_cast<ReservingSolver*>(solver_.get())->reserveFor(bodies, joints);
+    reservedBodies_ = bodies;
+    reservedJoints_ = joints;
+  }
   const auto h = static_cast<btScalar>(kFixedStep / kPhysicsSubsteps);
   for (int i = 0; i < kPhysicsSubsteps; ++i) dynamics_->stepSimulation(h, 0, h);
 }

@@ -83,6 +83,8 @@ class World {
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<btRigidBody*> bodies_;  // owned; deleted in the destructor or removeBody
   btRigidBody* ground_ = nullptr;
+  // The contents the solver's arrays were last sized for (World::step).
+  int reservedBodies_ = -1, reservedJoints_ = -1;
 };
 
 }  // namespace gaitlab::physics

@@ -4,6 +4,11 @@
 
 #include <algorithm>
 
+#if GAITLAB_BULLET_MT
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h>
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h>
+#endif
+
 #include "physics/convert.h"
 
 namespace gaitlab::physics {
@@ -42,6 +47,19 @@ btDefaultCollisionConstructionInfo poolSizes(int contactPool) {
 }
 }  // namespace
 
+#if GAITLAB_BULLET_MT
+// Only in the probe build `gaitlab_bullet_mt` (native/CMakeLists.txt, docs/parallel.md): Bullet's
+// own multithreaded world, whose collision dispatch and island solving run on the task scheduler
+// installed with btSetTaskScheduler, measured against gaitlab's physics shards.
+World::World(int contactPool)
+    : config_(std::make_unique<btDefaultCollisionConfiguration>(poolSizes(contactPool))),
+      dispatcher_(std::make_unique<btCollisionDispatcherMt>(config_.get(), 40)),
+      broadphase_(std::make_unique<btDbvtBroadphase>()),
+      solver_(std::make_unique<btConstraintSolverPoolMt>(8)),
+      dynamics_(std::make_unique<btDiscreteDynamicsWorldMt>(
+          dispatcher_.get(), broadphase_.get(), static_cast<btConstraintSolverPoolMt*>(solver_.get()),
+          nullptr, config_.get())) {
+#else
 World::World(int contactPool)
     : config_(std::make_unique<btDefaultCollisionConfiguration>(poolSizes(contactPool))),
       dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
@@ -49,6 +67,7 @@ World::World(int contactPool)
       solver_(std::make_unique<ReservingSolver>()),
       dynamics_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
                                                           solver_.get(), config_.get())) {
+#endif
   dynamics_->setGravity(btVector3(0, -9.81f, 0));
   // A character's trunk weighs 30-60 times its foot; sequential impulses converge slowly across
   // such mass ratios (see kPhysicsSubsteps for the rest of the story).
@@ -131,7 +150,9 @@ void World::moveBodyTo(btRigidBody* body, World& other) {
 void World::step() {
   const int bodies = dynamics_->getNumCollisionObjects(), joints = dynamics_->getNumConstraints();
   if (bodies != reservedBodies_ || joints != reservedJoints_) {
+#if !GAITLAB_BULLET_MT
     static_cast<ReservingSolver*>(solver_.get())->reserveFor(bodies, joints);
+#endif
     reservedBodies_ = bodies;
     reservedJoints_ = joints;
   }

@@ -11,7 +11,7 @@ class btCollisionShape;
 class btDefaultCollisionConfiguration;
 class btDiscreteDynamicsWorld;
 class btRigidBody;
-class btSequentialImpulseConstraintSolver;
+class btConstraintSolver;
 
 namespace gaitlab::physics {
 
@@ -78,7 +78,7 @@ class World {
   std::unique_ptr<btDefaultCollisionConfiguration> config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<btConstraintSolver> solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<btRigidBody*> bodies_;  // owned; deleted in the destructor or removeBody

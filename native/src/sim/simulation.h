@@ -79,6 +79,8 @@ class Simulation {
   uint32_t stepIndex() const { return stepIndex_; }
   int bodyCount() const { return static_cast<int>(renderBodies_.size()); }
   int threads() const { return pool_.size(); }
+  // The simulation's thread pool (the Bullet-multithreading probe runs Bullet's tasks on it).
+  ThreadPool& pool() { return pool_; }
   int characterCount() const { return static_cast<int>(agents_.size()); }
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }

@@ -10,6 +10,8 @@
 //   node bench/run.mjs --only native,node,chromium   a subset of the runtimes
 //   node bench/run.mjs --out DIR  somewhere else than bench/results
 //   node bench/run.mjs --tiny     a few seconds per runtime: checks the pipeline (tests/wasm)
+//   node bench/run.mjs --readme   also replace the README's measured block (between the
+//                                 <!-- bench:begin --> and <!-- bench:end --> markers) with this run's
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -311,7 +313,20 @@ for (const d of gridDocs) {
   }
 }
 md.push('', `Same state in every mode and thread count: ${gridDocs.every((d) => [2, 4].every((legs) => grid.characters.every((n) => new Set(d.points.filter((p) => p.legs === legs && p.characters === n).map((p) => p.state_hash)).size <= 1))) ? 'yes' : 'NO'} (state hash per crowd, every runtime); every run of a point ended in the same state: ${docs.every((d) => d.points.every((p) => p.deterministic)) ? 'yes' : 'NO'}.`, '');
-md.push('Charts:', '', ...svgs.map((s) => `- [${s.caption}](${s.file})`), '');
-fs.writeFileSync(path.join(outDir, `${base}.md`), md.join('\n'));
-process.stdout.write(md.join('\n'));
+const chartList = (prefix) => ['Charts:', '', ...svgs.map((s) => `- [${s.caption}](${prefix}${s.file})`), ''];
+fs.writeFileSync(path.join(outDir, `${base}.md`), [...md, ...chartList('')].join('\n'));
+if (flag('--readme')) {
+  // The README shows the figures of one run, written here so that none is typed in by hand.
+  const readme = path.join(root, 'README.md');
+  const text = fs.readFileSync(readme, 'utf8');
+  const begin = '<!-- bench:begin -->', end = '<!-- bench:end -->';
+  if (!text.includes(begin) || !text.includes(end)) throw new Error(`README.md has no ${begin} ... ${end} block`);
+  const rel = `${path.relative(root, outDir).split(path.sep).join('/')}/`;
+  const embedded = [...md, `Results file: [${rel}${base}.json](${rel}${base}.json).`, '',
+    ...['share-physics-controller', 'step-quadruped-native', 'realtime-capacity', 'wasm-native-ratio', 'fig5_4-quadruped-controller']
+      .map((name) => svgs.find((s) => s.file.endsWith(`-${name}.svg`)))
+      .filter(Boolean).map((s) => `![${s.caption}](${rel}${s.file})`), '', ...chartList(rel)];
+  fs.writeFileSync(readme, text.slice(0, text.indexOf(begin) + begin.length) + '\n' + embedded.join('\n') + '\n' + text.slice(text.indexOf(end)));
+}
+process.stdout.write([...md, ...chartList('')].join('\n'));
 process.stderr.write(`\nbench: wrote ${path.relative(root, path.join(outDir, base))}.{json,md} and ${svgs.length} charts in ${minutes.toFixed(1)} minutes\n`);

@@ -145,3 +145,23 @@ TEST(Experiment, PercentileIsNearestRank) {
   EXPECT_EQ(gaitlab::sim::percentile(x, 99), 5);
   EXPECT_EQ(gaitlab::sim::percentile(x, 0), 1);
 }
+
+TEST(Modes, AThrownBoxHitsACharacterInAnotherShard) {
+  // Three quadrupeds over three shards; the box starts next to character 0 (shard 0) and flies
+  // at character 2 (shard 2): it must follow its nearest character from shard to shard and hit.
+  // Measured as how far character 2's trunk moves, with and without the box.
+  double moved[2];
+  for (int withBox = 0; withBox < 2; ++withBox) {
+    Simulation sim(2, 4, 3);
+    sim.crowdScene(Kind::Quadruped, 3, 4.0);
+    sim.setMode(Mode::Full);
+    ASSERT_EQ(sim.shardOf(0), 0);
+    ASSERT_EQ(sim.shardOf(2), 2);
+    const Eigen::Vector3d target = sim.character(2).segmentState(0).position;
+    const Eigen::Vector3d start = sim.character(0).segmentState(0).position + Eigen::Vector3d(0, 0.3, 0);
+    if (withBox) sim.throwBox(start, (target - start).normalized() * 14.0, 0.15);
+    sim.step(60);
+    moved[withBox] = (sim.character(2).segmentState(0).position - target).norm();
+  }
+  EXPECT_GT(moved[1], moved[0] + 0.05) << "the box passed through the character";
+}

@@ -1,9 +1,18 @@
 // The C ABI (c_api.h) over sim::Simulation.
 #include "api/c_api.h"
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "api/cli_bench.h"
+#include "gait/defaults.h"
+#include "gait/heading.h"
+#include "gait/params_io.h"
+#include "gait/schema.h"
+#include "optimize/optimizer.h"
 #include "sim/simulation.h"
 
 using gaitlab::sim::Kind;
@@ -49,6 +58,231 @@ const char* gl_sim_state_hash(void* s) {
 }
 
 const void* gl_sim_render_buffer(void* s) { return sim(s)->renderBuffer(); }
+
+// ---- Interaction: the demo page's commands (issue 5) --------------------------------------------
+
+int gl_sim_set_goal(void* s, int id, double speed, double turn_rate) {
+  const gaitlab::gait::Goal goal{speed, turn_rate};
+  if (id == -1) {
+    sim(s)->setGoal(-1, goal);
+    return 0;
+  }
+  const int i = sim(s)->indexOf(id);
+  if (i < 0) return -1;
+  sim(s)->setGoal(i, goal);
+  return 0;
+}
+
+int gl_sim_throw_box(void* s, double x, double y, double z, double vx, double vy, double vz,
+                     double half) {
+  half = std::clamp(half, 0.03, 0.5);
+  return sim(s)->throwBox({x, y, z}, {vx, vy, vz}, half);
+}
+
+int gl_sim_drag(void* s, int id, int segment, double lx, double ly, double lz, double tx,
+                double ty, double tz) {
+  return sim(s)->drag(id, segment, {lx, ly, lz}, {tx, ty, tz}) ? 0 : -1;
+}
+
+void gl_sim_end_drag(void* s) { sim(s)->endDrag(); }
+
+int gl_sim_reset_character(void* s, int id) { return sim(s)->resetCharacter(id) ? 0 : -1; }
+
+int gl_sim_remove_character(void* s, int id) { return sim(s)->removeCharacter(id) ? 0 : -1; }
+
+void gl_sim_set_auto_reset(void* s, double seconds) {
+  sim(s)->setAutoReset(std::max(0.0, seconds));
+}
+
+int gl_sim_character_count(void* s) { return sim(s)->characterCount(); }
+
+int gl_sim_character_info(void* s, double* out, int capacity) {
+  Simulation& S = *sim(s);
+  const int n = S.characterCount();
+  for (int i = 0; i < std::min(n, capacity); ++i) {
+    const gaitlab::physics::Character& c = S.character(i);
+    const auto root = c.segmentState(c.morphology().legFrames[0]);
+    double* o = out + i * GL_INFO_FIELDS;
+    o[GL_INFO_ID] = S.idOf(i);
+    o[GL_INFO_KIND] = static_cast<int>(S.kindOf(i));
+    o[GL_INFO_X] = root.position.x();
+    o[GL_INFO_Y] = root.position.y();
+    o[GL_INFO_Z] = root.position.z();
+    o[GL_INFO_HEADING] = gaitlab::gait::headingOf(root.orientation);
+    o[GL_INFO_SPEED] = std::hypot(root.linearVelocity.x(), root.linearVelocity.z());
+    o[GL_INFO_FALLEN] = S.fallen(i) ? 1 : 0;
+    o[GL_INFO_FALLEN_SECONDS] = S.fallenSeconds(i);
+    o[GL_INFO_GOAL_SPEED] = S.controller(i).goal().speed;
+    o[GL_INFO_GOAL_TURN] = S.controller(i).goal().turnRate;
+    o[GL_INFO_PHASE] = S.controller(i).player().phase();
+  }
+  return n;
+}
+
+}  // extern "C"
+
+// ---- Gait parameters: schema, presets, gait files ----------------------------------------------
+
+namespace {
+thread_local std::string g_error;  // gl_last_error()
+
+int fail(int code, std::string message) {
+  g_error = std::move(message);
+  return code;
+}
+
+bool characterKind(int kind, gaitlab::gait::Character* c) {
+  if (kind == GL_KIND_BIPED) *c = gaitlab::gait::Character::Biped;
+  else if (kind == GL_KIND_QUADRUPED) *c = gaitlab::gait::Character::Quadruped;
+  else return false;
+  return true;
+}
+}  // namespace
+
+extern "C" {
+
+const char* gl_last_error(void) { return g_error.c_str(); }
+
+const char* gl_schema_json(void) {
+  static const std::string schema = gaitlab::gait::schemaJson();
+  return schema.c_str();
+}
+
+const char* gl_preset_json(int kind) {
+  gaitlab::gait::Character c;
+  return characterKind(kind, &c) ? gaitlab::gait::presetText(c) : nullptr;
+}
+
+int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
+  using namespace gaitlab::gait;
+  Character c;
+  if (!characterKind(kind, &c)) return fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
+  Simulation& simulation = *sim(s);
+  std::vector<int> targets;
+  if (characterId < 0) {
+    for (int i = 0; i < simulation.characterCount(); ++i) {
+      if (characterOf(simulation.character(i).morphology()) == c) targets.push_back(i);
+    }
+    if (targets.empty()) return fail(GL_ERR_NO_CHARACTER, std::string("no ") + characterName(c) + " in the simulation");
+  } else {
+    const int i = simulation.characterIndex(characterId);
+    if (i < 0) return fail(GL_ERR_NO_CHARACTER, "no character with id " + std::to_string(characterId));
+    if (characterOf(simulation.character(i).morphology()) != c)
+      return fail(GL_ERR_KIND, "character " + std::to_string(characterId) + " is not a " + characterName(c));
+    targets.push_back(i);
+  }
+  GaitFile file;
+  if (const auto error = parseGaitFile(text ? text : "", c, &file))
+    return fail(GL_ERR_INVALID_PARAMS, error->describe());
+  for (int i : targets) simulation.controller(i).setParams(file.params);
+  g_error.clear();
+  return GL_OK;
+}
+
+const char* gl_sim_get_params(void* s, int characterId) {
+  using namespace gaitlab::gait;
+  const Simulation& simulation = *sim(s);
+  const int i = simulation.characterIndex(characterId);
+  if (i < 0) return nullptr;
+  g_string = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).params());
+  return g_string.c_str();
+}
+
+}  // extern "C"
+
+// ---- Optimisation, one generation at a time ---------------------------------------------------
+
+namespace {
+struct OptHandle {
+  std::unique_ptr<gaitlab::optimize::Optimizer> optimizer;
+  gaitlab::gait::Character character;
+  std::string text;  // gl_opt_best_json's backing store
+};
+OptHandle* opt(void* handle) { return static_cast<OptHandle*>(handle); }
+}  // namespace
+
+extern "C" {
+
+void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
+                    const char* startJson, const char* settingsJson) {
+  using namespace gaitlab;
+  gait::Character c;
+  if (!characterKind(kind, &c)) {
+    fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
+    return nullptr;
+  }
+  optimize::SearchOptions o;
+  o.character = c;
+  o.method = method == 1 ? optimize::Method::CmaEs : optimize::Method::Greedy;
+  o.candidates = candidates < 2 ? 2 : candidates;
+  o.seed = seed;
+  o.threads = threads < 1 ? 1 : threads > GL_MAX_THREADS ? GL_MAX_THREADS : threads;
+  gait::GaitFile start;
+  start.params = gait::defaultParams(c);
+  if (startJson) {
+    if (const auto error = gait::parseGaitFile(startJson, c, &start)) {
+      fail(GL_ERR_INVALID_PARAMS, error->describe());
+      return nullptr;
+    }
+  }
+  if (settingsJson) {
+    const nlohmann::json j = nlohmann::json::parse(settingsJson, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) {
+      fail(GL_ERR_INVALID_PARAMS, "objective settings: expected a JSON object");
+      return nullptr;
+    }
+    for (const auto& item : j.items()) {
+      if (item.key() == "speeds") {
+        o.objective.speeds.clear();
+        for (const auto& v : item.value()) {
+          if (!v.is_number()) {
+            fail(GL_ERR_INVALID_PARAMS, "speeds: expected numbers");
+            return nullptr;
+          }
+          o.objective.speeds.push_back(v.get<double>());
+        }
+        if (!item.value().is_array() || o.objective.speeds.empty()) {
+          fail(GL_ERR_INVALID_PARAMS, "speeds: expected a non-empty array of numbers");
+          return nullptr;
+        }
+        continue;
+      }
+      const std::string error = item.value().is_number()
+                                    ? optimize::setSetting(o.objective, item.key(), item.value().get<double>())
+                                    : item.key() + ": expected a number";
+      if (!error.empty()) {
+        fail(GL_ERR_INVALID_PARAMS, error);
+        return nullptr;
+      }
+    }
+  }
+  g_error.clear();
+  return new OptHandle{optimize::Optimizer::create(o, start.params), c, {}};
+}
+
+void gl_opt_destroy(void* h) { delete opt(h); }
+
+double gl_opt_step(void* h) { return opt(h)->optimizer->step().bestObjective; }
+
+int gl_opt_generation(void* h) { return opt(h)->optimizer->generation(); }
+
+int gl_opt_evaluations(void* h) { return opt(h)->optimizer->evaluations(); }
+
+const char* gl_opt_best_json(void* h) {
+  using namespace gaitlab;
+  const optimize::Optimizer& o = *opt(h)->optimizer;
+  const optimize::ObjectiveTerms& t = o.bestTerms();
+  const nlohmann::json meta = {
+      {"source", "gaitlab optimize (gl_opt)"},
+      {"method", optimize::methodName(o.options().method)},
+      {"seed", o.options().seed},
+      {"objective", o.bestObjective()},
+      {"objective_terms", {{"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"fall", t.fall}}},
+      {"generations", o.generation()},
+      {"evaluations", o.evaluations()}};
+  opt(h)->text = gait::gaitFileJson(opt(h)->character, o.best(), o.generation() ? meta : nlohmann::json::object());
+  return opt(h)->text.c_str();
+}
 
 // ---- Benchmark ------------------------------------------------------------------------------
 

@@ -56,6 +56,106 @@ GL_EXPORT const char* gl_sim_state_hash(void* sim);
 // Pointer (byte offset into WASM memory) of the render buffer header, see render_buffer.h.
 GL_EXPORT const void* gl_sim_render_buffer(void* sim);
 
+// ---- Gait parameters: schema, presets, gait files (native/src/gait/schema.h, params_io.h) ----
+//
+// Gait files are JSON: {"format":"gaitlab-gait","version":1,"character":"biped"|"quadruped",
+// "params":{"<name>": number | [4 numbers], ...},"meta":{...}} (public/presets/*.json).
+
+// Error codes of the parameter functions; gl_last_error() gives the message of the last failure
+// on the calling thread ("FIELD: WHAT" for a refused file).
+enum {
+  GL_OK = 0,
+  GL_ERR_INVALID_PARAMS = 1,  // the file was refused (malformed, wrong character, bad field...)
+  GL_ERR_NO_CHARACTER = 2,    // no character with that id, or none of that kind
+  GL_ERR_KIND = 3,            // kind is not GL_KIND_BIPED or GL_KIND_QUADRUPED, or the
+                              // character with that id is of another kind
+};
+GL_EXPORT const char* gl_last_error(void);
+
+// The parameter schema: {"version":1,"characters":{"biped":[...],"quadruped":[...]}}, an entry
+// per parameter {"name","group","min","max","default","unit","description","knots"}.
+GL_EXPORT const char* gl_schema_json(void);
+
+// The shipped preset of a kind, as a gait file; NULL for a kind that is not a character.
+GL_EXPORT const char* gl_preset_json(int kind);
+
+// Validates a gait file for `kind` and gives it to the character with id `characterId` (as
+// returned by gl_sim_spawn), or with characterId = -1 to every character of that kind. Nothing
+// changes unless the whole file is valid. Returns GL_OK or an error code.
+GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char* json);
+
+// The gait parameters a character is using, as a gait file; NULL if there is no such character.
+GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
+
+// ---- Optimisation, one generation at a time (native/src/optimize/optimizer.h) ----------------
+//
+// For the browser's optimize panel: create a search, call gl_opt_step once per generation (each
+// runs `candidates` evaluations, a few tenths of a second to seconds), read the best so far.
+
+// A new search. `kind` is GL_KIND_BIPED or GL_KIND_QUADRUPED; `method` 0 = greedy (thesis §3.3),
+// 1 = CMA-ES; `start_json` a gait file to start from, or NULL for the preset; `settings_json`
+// NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,...}, see
+// optimize/objective.h). `threads` is clamped to [1, GL_MAX_THREADS]. Returns NULL on error
+// (gl_last_error() says why).
+GL_EXPORT void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
+                              const char* start_json, const char* settings_json);
+GL_EXPORT void gl_opt_destroy(void* opt);
+// Runs one generation; returns the best objective so far.
+GL_EXPORT double gl_opt_step(void* opt);
+GL_EXPORT int gl_opt_generation(void* opt);
+GL_EXPORT int gl_opt_evaluations(void* opt);
+// The best parameters so far as a gait file (meta: method, seed, objective, its terms,
+// generations, evaluations). Valid until the next call on this handle.
+GL_EXPORT const char* gl_opt_best_json(void* opt);
+
+// ---- Interaction: the demo page's commands (issue 5) --------------------------------------------
+// Characters are named by the id gl_sim_spawn returned. The sim worker calls these between
+// fixed steps only (it queues the page's commands and applies them at the start of the next
+// step), so each acts at a known step index. Functions returning int give 0 on success and -1
+// if no character has that id.
+
+// Steering goal of character `id`, or of every character with id = -1: forward speed (m/s) and
+// turn rate (rad/s, about +y, positive = left).
+GL_EXPORT int gl_sim_set_goal(void* sim, int id, double speed, double turn_rate);
+
+// Throws a box of half size `half` (m) from (x, y, z) with velocity (vx, vy, vz) m/s. It collides
+// with characters, props and the ground; the oldest thrown box goes once there are 32. Returns
+// its id, or -1 if the render buffer is full.
+GL_EXPORT int gl_sim_throw_box(void* sim, double x, double y, double z, double vx, double vy,
+                               double vz, double half);
+
+// Holds point (lx, ly, lz) of segment `segment` of character `id` (segment body frame, metres;
+// the segment is the character's n-th body in the render buffer) on a spring towards the world
+// point (tx, ty, tz), every step until gl_sim_end_drag. Calling it again moves the target.
+GL_EXPORT int gl_sim_drag(void* sim, int id, int segment, double lx, double ly, double lz,
+                          double tx, double ty, double tz);
+GL_EXPORT void gl_sim_end_drag(void* sim);
+
+// Replaces character `id` by a fresh one standing where it is, same gait and goal.
+GL_EXPORT int gl_sim_reset_character(void* sim, int id);
+GL_EXPORT int gl_sim_remove_character(void* sim, int id);
+
+// Characters fallen for `seconds` (leg frame below half its standing height or tilted over 60°)
+// are reset automatically; 0 turns it off.
+GL_EXPORT void gl_sim_set_auto_reset(void* sim, double seconds);
+
+GL_EXPORT int gl_sim_character_count(void* sim);
+
+// Fields per character written by gl_sim_character_info, in this order.
+enum {
+  GL_INFO_ID, GL_INFO_KIND, GL_INFO_X, GL_INFO_Y, GL_INFO_Z,  // root leg frame's centre, m
+  GL_INFO_HEADING,        // rad about +y, 0 = +z
+  GL_INFO_SPEED,          // horizontal speed of the root leg frame, m/s
+  GL_INFO_FALLEN,         // 1 or 0
+  GL_INFO_FALLEN_SECONDS, // how long it has been down
+  GL_INFO_GOAL_SPEED, GL_INFO_GOAL_TURN,
+  GL_INFO_PHASE,          // gait phase in [0, 1)
+  GL_INFO_FIELDS
+};
+// Writes GL_INFO_FIELDS doubles per character for at most `capacity` characters into `out`;
+// returns the number of characters (which may exceed `capacity`).
+GL_EXPORT int gl_sim_character_info(void* sim, double* out, int capacity);
+
 // ---- Benchmark (the performance page, web/src/bench) ----------------------------------------
 // The same measurement as `gaitlab bench` (native/src/sim/experiment.h), one point per call so
 // that the page can report progress and cancel between points. Both return JSON strings that

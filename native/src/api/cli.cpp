@@ -1,16 +1,25 @@
 #include "api/cli.h"
 
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <ctime>
+#include <fstream>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "api/cli_bench.h"
+#include "gait/defaults.h"
+#include "gait/params_io.h"
+#include "gait/schema.h"
+#include "optimize/optimizer.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::api {
@@ -27,9 +36,12 @@ const char* kUsage =
     "commands:\n"
     "  walk       one character walks; prints what it achieved (speed, drift, duty factors...)\n"
     "  bench      the thesis's performance experiment on crowds (gaitlab bench --help)\n"
+    "  schema     prints the gait parameter schema (names, groups, bounds, defaults, units)\n"
+    "  optimize   searches gait parameters (thesis §3.3) and writes the best as a gait file\n"
     "\n"
     "walk options:\n"
-    "  --character biped|quadruped   (default biped)\n"
+    "  --character biped|quadruped   (default biped, or the --params file's character)\n"
+    "  --params FILE                 gait file (public/presets/*.json format); default: preset\n"
     "  --speed M_S                   goal speed, m/s (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s (default 0)\n"
     "  --seconds S                   simulated time (default 20)\n"
@@ -38,6 +50,26 @@ const char* kUsage =
     "  --push-every S                seconds between pushes (default 4)\n"
     "  --seed N                      (default 1)\n"
     "  --trace                       include the leg frame's path every 0.1 s\n"
+    "  --json                        print one JSON document\n"
+    "\n"
+    "optimize options:\n"
+    "  --character biped|quadruped   (default biped, or the --params file's character)\n"
+    "  --params FILE                 start from this gait file (default: the preset)\n"
+    "  --method greedy|cmaes         greedy stochastic search of §3.3 (default) or CMA-ES\n"
+    "  --generations N               (default 20)\n"
+    "  --candidates K                evaluations per generation (default 10)\n"
+    "  --seed S                      (default 1): the same seed gives the same search\n"
+    "  --threads T                   evaluations in parallel (default 1)\n"
+    "  --out FILE                    where the best gait is written (required)\n"
+    "  --seconds S                   length of each evaluation episode (default 800 steps)\n"
+    "  --speeds A,B,...              goal speeds each candidate walks at, m/s (default 1.0)\n"
+    "  --objective NAME=V,...        objective settings: wd wv wa wr fallPenalty warmup starts\n"
+    "                                startImpulse turnRate pushImpulse pushEvery\n"
+    "  --json                        print a JSON summary on stdout (progress goes to stderr)\n"
+    "  Ctrl-C stops after the current generation and still writes the best so far.\n"
+    "\n"
+    "schema options:\n"
+    "  --character biped|quadruped   only this character (default both)\n"
     "  --json                        print one JSON document\n"
     "\n"
     "options:\n"
@@ -96,21 +128,43 @@ struct Options {
   }
 };
 
+// --character, when given, must name a character.
+bool characterOption(Options& o, std::optional<gait::Character>* out) {
+  const auto it = o.values.find("--character");
+  if (it == o.values.end()) return true;
+  *out = gait::characterFromName(it->second);
+  if (!*out) o.error = "--character: '" + it->second + "' is not biped or quadruped";
+  return out->has_value();
+}
+
+// Loads a --params gait file for the character given (or the file's own when none is given).
+// A refused file is reported as "gaitlab: FILE: FIELD: WHAT" (exit status 2).
+int loadParamsOption(const std::string& path, std::optional<gait::Character> expected, gait::GaitFile* file) {
+  if (const auto error = gait::loadGaitFile(path, expected, file)) {
+    std::fprintf(stderr, "gaitlab: %s: %s\n", path.c_str(), error->describe().c_str());
+    return 2;
+  }
+  return 0;
+}
+
 int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
-            {"--character", "--speed", "--turn", "--seconds", "--terrain", "--push-impulse",
-             "--push-every", "--seed"},
+            {"--character", "--params", "--speed", "--turn", "--seconds", "--terrain",
+             "--push-impulse", "--push-every", "--seed"},
             {"--json", "--trace"});
   if (!o.error.empty()) return usageError(o.error);
   sim::WalkOptions w;
-  const std::string character = o.values.count("--character") ? o.values["--character"] : "biped";
-  if (character == "biped") {
-    w.character = sim::Kind::Biped;
-  } else if (character == "quadruped") {
-    w.character = sim::Kind::Quadruped;
-  } else {
-    return usageError("--character: '" + character + "' is not biped or quadruped");
+  std::optional<gait::Character> chosen;
+  if (!characterOption(o, &chosen)) return usageError(o.error);
+  gait::GaitFile file;
+  if (o.values.count("--params")) {
+    if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
+    chosen = file.character;
+    w.params = &file.params;
   }
+  const gait::Character c = chosen.value_or(gait::Character::Biped);
+  const std::string character = gait::characterName(c);
+  w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
   w.terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
   if (w.terrain != "flat") return usageError("--terrain: '" + w.terrain + "' is not flat");
   double seed = 1;
@@ -154,6 +208,180 @@ int walk(int argc, char** argv) {
   return 0;
 }
 
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void onInterrupt(int) { g_interrupted = 1; }
+
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char out[32];
+  std::strftime(out, sizeof(out), "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return out;
+}
+
+json termsJson(const optimize::ObjectiveTerms& t) {
+  return {{"total", t.total}, {"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr},
+          {"fall", t.fall}, {"fell", t.fell}, {"seconds", t.seconds}};
+}
+
+int optimizeCommand(int argc, char** argv) {
+  Options o(argc, argv, 2,
+            {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
+             "--threads", "--out", "--seconds", "--speeds", "--objective"},
+            {"--json"});
+  if (!o.error.empty()) return usageError(o.error);
+  std::optional<gait::Character> chosen;
+  if (!characterOption(o, &chosen)) return usageError(o.error);
+  if (!o.values.count("--out")) return usageError("--out FILE is required");
+  const std::string outPath = o.values["--out"];
+
+  gait::GaitFile start;
+  std::string startName = "preset";
+  if (o.values.count("--params")) {
+    if (const int status = loadParamsOption(o.values["--params"], chosen, &start)) return status;
+    chosen = start.character;
+    startName = o.values["--params"];
+  }
+  optimize::SearchOptions search;
+  search.character = chosen.value_or(gait::Character::Biped);
+  if (!o.values.count("--params")) start.params = gait::defaultParams(search.character);
+
+  const std::string method = o.values.count("--method") ? o.values["--method"] : "greedy";
+  if (method == "greedy") {
+    search.method = optimize::Method::Greedy;
+  } else if (method == "cmaes") {
+    search.method = optimize::Method::CmaEs;
+  } else {
+    return usageError("--method: '" + method + "' is not greedy or cmaes");
+  }
+  double generations = 20, candidates = 10, seed = 1, threads = 1;
+  if (!o.number("--generations", 1, 1e6, 20, &generations) ||
+      !o.number("--candidates", 2, 1000, 10, &candidates) ||
+      !o.number("--seed", 0, 4294967295.0, 1, &seed) ||
+      !o.number("--threads", 1, 64, 1, &threads) ||
+      !o.number("--seconds", 0.5, 120, search.objective.seconds, &search.objective.seconds))
+    return usageError(o.error);
+  search.candidates = static_cast<int>(candidates);
+  search.seed = static_cast<uint64_t>(seed);
+  search.threads = static_cast<int>(threads);
+#ifdef __EMSCRIPTEN__
+  // The WASM build pre-starts a fixed pthread pool (c_api.h, GL_MAX_THREADS).
+  search.threads = std::min(search.threads, 5);
+#endif
+  // Comma-separated lists: --speeds 0.5,1.0 and --objective wd=1,starts=3.
+  const auto split = [](const std::string& text) {
+    std::vector<std::string> parts;
+    size_t begin = 0;
+    for (;;) {
+      const size_t comma = text.find(',', begin);
+      parts.push_back(text.substr(begin, comma - begin));
+      if (comma == std::string::npos) return parts;
+      begin = comma + 1;
+    }
+  };
+  const auto parseNumber = [](const std::string& text, double* out) {
+    char* end = nullptr;
+    *out = std::strtod(text.c_str(), &end);
+    return end != text.c_str() && *end == '\0' && std::isfinite(*out);
+  };
+  if (o.values.count("--speeds")) {
+    search.objective.speeds.clear();
+    for (const std::string& part : split(o.values["--speeds"])) {
+      double v;
+      if (!parseNumber(part, &v) || v < -5 || v > 5)
+        return usageError("--speeds: '" + part + "' is not a speed in [-5, 5] m/s");
+      search.objective.speeds.push_back(v);
+    }
+  }
+  if (o.values.count("--objective")) {
+    for (const std::string& part : split(o.values["--objective"])) {
+      const size_t eq = part.find('=');
+      double v;
+      if (eq == std::string::npos || !parseNumber(part.substr(eq + 1), &v))
+        return usageError("--objective: '" + part + "' is not NAME=NUMBER");
+      const std::string error = optimize::setSetting(search.objective, part.substr(0, eq), v);
+      if (!error.empty()) return usageError("--objective: " + error);
+    }
+  }
+
+  std::string command = "gaitlab";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+
+  g_interrupted = 0;
+  const auto previous = std::signal(SIGINT, onInterrupt);
+  auto optimizer = optimize::Optimizer::create(search, start.params);
+  const int total = static_cast<int>(generations);
+  json history = json::array();
+  double startObjective = 0, elapsed = 0;
+  for (int g = 0; g < total && !g_interrupted; ++g) {
+    const optimize::Generation gen = optimizer->step();
+    if (g == 0) startObjective = gen.bestObjective;  // generation 1 holds the start (greedy)
+    elapsed += gen.seconds;
+    history.push_back({{"generation", gen.index}, {"best_objective", gen.bestObjective},
+                       {"evaluations", gen.evaluations}, {"seconds", gen.seconds}});
+    const double left = elapsed / gen.index * (total - gen.index);
+    std::fprintf(stderr, "gaitlab optimize: generation %d/%d  best %.6g%s  (%.2f s, about %.0f s left)\n",
+                 gen.index, total, gen.bestObjective, gen.improved ? " *" : "", gen.seconds, left);
+  }
+  std::signal(SIGINT, previous);
+  const bool interrupted = g_interrupted != 0;
+  if (interrupted) std::fprintf(stderr, "gaitlab optimize: interrupted; writing the best so far\n");
+
+  json meta = {{"source", "gaitlab optimize"},
+               {"command", command},
+               {"method", optimize::methodName(search.method)},
+               {"seed", search.seed},
+               {"objective", optimizer->bestObjective()},
+               {"objective_terms", termsJson(optimizer->bestTerms())},
+               {"objective_settings", json::parse(optimize::settingsJson(search.objective), nullptr, false)},
+               {"start", startName},
+               {"generations", optimizer->generation()},
+               {"candidates", search.candidates},
+               {"evaluations", optimizer->evaluations()},
+               {"interrupted", interrupted},
+               {"date", utcNow()}};
+  {
+    std::ofstream out(outPath, std::ios::binary);
+    out << gait::gaitFileJson(search.character, optimizer->best(), meta);
+    if (!out) {
+      std::fprintf(stderr, "gaitlab: %s: cannot be written\n", outPath.c_str());
+      return 1;
+    }
+  }
+  json summary = {{"character", gait::characterName(search.character)},
+                  {"method", optimize::methodName(search.method)},
+                  {"seed", search.seed},
+                  {"candidates", search.candidates},
+                  {"threads", search.threads},
+                  {"generations", optimizer->generation()},
+                  {"evaluations", optimizer->evaluations()},
+                  {"start_objective", startObjective},
+                  {"best_objective", optimizer->bestObjective()},
+                  {"best_terms", termsJson(optimizer->bestTerms())},
+                  {"determinism_mismatches", optimizer->determinismMismatches()},
+                  {"seconds", elapsed},
+                  {"seconds_per_generation", optimizer->generation() ? elapsed / optimizer->generation() : 0.0},
+                  {"interrupted", interrupted},
+                  {"history", history},
+                  {"out", outPath}};
+  std::printf("%s\n", o.flags.count("--json") ? summary.dump().c_str() : summary.dump(2).c_str());
+  return 0;
+}
+
+int schema(int argc, char** argv) {
+  Options o(argc, argv, 2, {"--character"}, {"--json"});
+  std::optional<gait::Character> only;
+  if (!o.error.empty() || !characterOption(o, &only)) return usageError(o.error);
+  const std::string text = gait::schemaJson(only);
+  if (o.flags.count("--json")) {
+    std::printf("%s\n", text.c_str());
+  } else {
+    std::printf("%s\n", nlohmann::ordered_json::parse(text, nullptr, false).dump(2).c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runCli(int argc, char** argv) {
@@ -172,6 +400,8 @@ int runCli(int argc, char** argv) {
   }
   if (cmd == "walk") return walk(argc, argv);
   if (cmd == "bench") return runBenchCli(argc, argv);
+  if (cmd == "schema") return schema(argc, argv);
+  if (cmd == "optimize") return optimizeCommand(argc, argv);
   return usageError("unknown command '" + cmd + "'");
 }
 

@@ -99,6 +99,7 @@ Morphology makeBiped() {
   m.segments.push_back({"legframe", {0.17, 0.28, 0.11}, 36.0, {0, hipY + 0.25, 0}, -1, Joint{},
                         0xd9734eff});
   m.legFrames = {0};
+  m.armature = 0.05;
   // Hip ranges (flexion is negative about +x: the thigh swings forward).
   const Joint hip = ball(Vector3d::Zero(), {-2.0, -0.6, -0.5}, {0.7, 0.6, 0.5});
   m.legs.push_back(addLeg(m, "left", 0, {0.09, hipY, 0}, d, +1, hip, 0x4e8fd9ff));
@@ -132,6 +133,7 @@ Morphology makeQuadruped() {
                         ball({0, frameY, -spineFront}, {-lim, -lim, -lim}, {lim, lim, lim}),
                         0xd9734eff});
   m.legFrames = {0, back};
+  m.armature = 0.05;
   const Joint hip = ball(Vector3d::Zero(), {-1.2, -0.3, -0.35}, {1.2, 0.3, 0.35});
   // Front knees (elbow/carpus) point backwards, hind knees (stifle) forwards.
   m.legs.push_back(addLeg(m, "front.left", 0, {0.09, hipY, halfLength}, d, -1, hip, 0x4e8fd9ff));

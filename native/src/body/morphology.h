@@ -65,6 +65,13 @@ struct Morphology {
   std::vector<int> legFrames;  // segment indices; [0] is the root. Quadruped: {front, back}
   std::vector<Leg> legs;
   std::vector<int> spine;  // segment indices from legFrames[0] towards legFrames[1]
+  // Joint armature (kg·m²): the least principal moment of inertia any segment is simulated with.
+  // The controller's PD torques are explicit and held for a 1/120 s control step, which is stable
+  // only while k_d·dt/I < ~1 and √(k_p/I)·dt < ~1; a 1 kg foot (I ≈ 0.005) would need ankle gains
+  // far too weak to hold the body up. Adding rotor-like inertia to light segments is what robotics
+  // simulators call armature (MuJoCo's `armature`); its effect on the motion is measured in
+  // docs/controller-notes.md.
+  double armature = 0;
 
   double totalMass() const;
   double standingHeight() const;  // rest-pose height of legFrames[0]'s centre

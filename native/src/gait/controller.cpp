@@ -167,7 +167,11 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
         torques[m_.legs[l].upper] = perHip;
   }
 
-  for (const body::Leg& leg : m_.legs) {
+  // Twist scaling on swing hips only: a stance leg cannot spin about its own axis (knee hinge,
+  // ankle and the foot on the ground lock it), and its hip twist is what turns the leg frame.
+  for (size_t l = 0; l < m_.legs.size(); ++l) {
+    const body::Leg& leg = m_.legs[l];
+    if (player_.leg(static_cast<int>(l)).stance) continue;
     const Vector3d axis = s.segments[leg.upper].orientation * Vector3d::UnitY();
     Vector3d& t = torques[leg.upper];
     t -= (1.0 - params_.gains.hipTwistScale) * t.dot(axis) * axis;
@@ -188,10 +192,19 @@ void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vec
   // Knee: PD towards a slightly bent stance knee (§3.1.4, §3.1.7).
   kneePd(l, s, params_.gains.stanceKneeFlexion, torques);
 
-  // Foot flat until toe-off time, then towards the toe-off angle (§3.1.6).
+  // Stance ankle: a joint PD holding the foot square to the shin, then pitched to the toe-off
+  // angle after the toe-off time (§3.1.6, §3.1.7). With the foot flat on the ground this is
+  // what keeps the stance leg from toppling over it; a world-frame "keep the foot level" PD
+  // exerts nothing while the foot lies flat.
   const LegParams& lp = params_.legs[l];
   const LegFrameParams& fp = params_.legFrames[legFrameIndex(leg)];
-  footPd(l, s, yaw, player_.leg(l).progress > lp.toeOffTime ? fp.toeOffAngle : 0.0, 1.0, torques);
+  const double pitch = player_.leg(l).progress > lp.toeOffTime ? fp.toeOffAngle : 0.0;
+  const BodyState& shin = s.segments[leg.lower];
+  const BodyState& foot = s.segments[leg.foot];
+  torques[leg.foot] += jointPd(params_.gains.stanceAnkleKp, params_.gains.stanceAnkleKd,
+                               shin.orientation, foot.orientation,
+                               Quaterniond(Eigen::AngleAxisd(pitch, Vector3d::UnitX())),
+                               shin.angularVelocity, foot.angularVelocity);
 }
 
 void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vector3d& velocityH,

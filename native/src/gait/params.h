@@ -38,7 +38,8 @@ struct LegParams {
 struct JointGains {
   double hipKp = 0, hipKd = 0;
   double kneeKp = 0, kneeKd = 0;
-  double ankleKp = 0, ankleKd = 0;
+  double ankleKp = 0, ankleKd = 0;          // swing foot, world frame (§3.1.6)
+  double stanceAnkleKp = 0, stanceAnkleKd = 0;  // stance foot relative to its shin (§3.1.7)
   double spineKp = 0, spineKd = 0;
   double stanceKneeFlexion = 0;  // rad, the stance knee's PD target
   // Share of the hip torque kept about the thigh's long axis. A limb's inertia about its own

@@ -3,6 +3,7 @@
 #include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <cassert>
 
 #include "physics/convert.h"
@@ -31,8 +32,16 @@ Character::Character(World& world, const body::Morphology& morphology,
   for (const body::Segment& s : morphology.segments) {
     // Feet get more friction than the rest: they are what the controller pushes with.
     const bool isFoot = s.name.size() > 5 && s.name.compare(s.name.size() - 5, 5, ".foot") == 0;
-    bodies_.push_back(world.addBox(s.halfExtents, s.mass, place(s.center), yaw, kCharacterGroup,
-                                   kCharacterMask, isFoot ? 1.0 : 0.6));
+    btRigidBody* b = world.addBox(s.halfExtents, s.mass, place(s.center), yaw, kCharacterGroup,
+                                  kCharacterMask, isFoot ? 1.0 : 0.6);
+    // Joint armature (body/morphology.h): raise each principal moment to at least `armature`.
+    const btVector3 inv = b->getInvInertiaDiagLocal();
+    btVector3 inertia;
+    for (int a = 0; a < 3; ++a)
+      inertia[a] = std::max(static_cast<btScalar>(morphology.armature), btScalar(1) / inv[a]);
+    b->setMassProps(static_cast<btScalar>(s.mass), inertia);
+    b->updateInertiaTensor();
+    bodies_.push_back(b);
   }
 
   for (size_t i = 0; i < morphology.segments.size(); ++i) {

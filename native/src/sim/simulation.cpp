@@ -12,7 +12,9 @@
 #include <new>
 
 #include "gait/defaults.h"
+#include "gait/heading.h"
 #include "physics/convert.h"
+#include "sim/walk_trial.h"
 
 namespace gaitlab::sim {
 
@@ -135,13 +137,7 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   if (kind == Kind::Box) {
     if (bodyCount() + 1 > kRenderCapacity) return -1;
     // The prop starts in the shard of the character nearest to it (rehomeProps keeps it there).
-    int shard = 0;
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& a : agents_) {
-      const btVector3 p = a->body->body(0)->getCenterOfMassPosition();
-      const double d = (p.x() - x) * (p.x() - x) + (p.z() - z) * (p.z() - z);
-      if (d < best) best = d, shard = a->shard;
-    }
+    const int shard = nearestShard(x, z, 0);
     const Eigen::Vector3d half(0.15, 0.15, 0.15);
     btRigidBody* b = worlds_[shard]->addBox(
         half, 4.0, {x, 1.5, z}, Eigen::Quaterniond(Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY())),
@@ -166,6 +162,8 @@ int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, in
   agents_.back()->shard = shard;
   shardAgents_[shard].push_back(agents_.back().get());
   const int id = nextId_++;
+  agents_.back()->id = id;
+  agents_.back()->kind = kind;
   const physics::Character& c = *agents_.back()->body;
   for (int i = 0; i < c.segmentCount(); ++i) {
     const body::Segment& s = m.segments[i];
@@ -176,6 +174,7 @@ int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, in
   }
   return id;
 }
+
 
 void Simulation::demoScene(int characters) {
   SceneRandom rng{seed_};
@@ -213,17 +212,23 @@ void Simulation::stepShard(int shard) {
   worlds_[shard]->updateContacts();
 }
 
+int Simulation::nearestShard(double x, double z, int fallback) const {
+  // Distance in the ground plane to each character's first segment (a leg frame), first of equals.
+  int shard = fallback;
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& a : agents_) {
+    const btVector3 r = a->body->body(0)->getCenterOfMassPosition();
+    const double d = (r.x() - x) * (r.x() - x) + (r.z() - z) * (r.z() - z);
+    if (d < best) best = d, shard = a->shard;
+  }
+  return shard;
+}
+
 void Simulation::rehomeProps() {
   if (shards() == 1) return;
   for (Prop& p : props_) {
     const btVector3 q = p.body->getCenterOfMassPosition();
-    int shard = p.shard;
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& a : agents_) {
-      const btVector3 r = a->body->body(0)->getCenterOfMassPosition();
-      const double d = (r.x() - q.x()) * (r.x() - q.x()) + (r.z() - q.z()) * (r.z() - q.z());
-      if (d < best) best = d, shard = a->shard;
-    }
+    const int shard = nearestShard(q.x(), q.z(), p.shard);
     if (shard != p.shard) {
       worlds_[p.shard]->moveBodyTo(p.body, *worlds_[shard]);
       p.shard = shard;
@@ -252,6 +257,7 @@ void Simulation::step(int steps) {
       pool_.parallelFor(characterCount(), controlChunk);
     }
     const auto t1 = Clock::now();
+    applyDrag();
     // Physics: the shards one after another, or (full mode) as a second parallel-for. Each shard
     // computes the same thing either way; only the thread that runs it differs.
     if (mode_ == Mode::Full) {
@@ -262,6 +268,7 @@ void Simulation::step(int steps) {
     const auto t2 = Clock::now();
     rehomeProps();
     ++stepIndex_;
+    updateFallen();
     const auto t3 = Clock::now();
     lastStep_ = {seconds(t0, t1), seconds(t1, t2), seconds(t0, t3)};
     controllerSeconds_ += lastStep_.controller;
@@ -316,6 +323,160 @@ std::string Simulation::stateHash() const {
   char out[17];
   std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h.h));
   return out;
+}
+
+// ---- Interaction (the demo page, issue 5) ----------------------------------------------------
+
+int Simulation::indexOf(int id) const {
+  for (size_t i = 0; i < agents_.size(); ++i)
+    if (agents_[i]->id == id) return static_cast<int>(i);
+  return -1;
+}
+
+int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& velocity,
+                         double half) {
+  if (bodyCount() + 1 > kRenderCapacity) return -1;
+  // Solid wood, roughly (600 kg/m³): a 0.24 m box weighs ~8 kg, enough at 10-15 m/s to knock
+  // a 1.7 m biped sideways without flinging it across the scene.
+  const double mass = 600.0 * std::pow(2 * half, 3);
+  // Like every prop, it starts in the shard of the character nearest to it and follows its
+  // nearest character from shard to shard as it flies (rehomeProps, docs/parallel.md).
+  const int shard = nearestShard(from.x(), from.z(), 0);
+  btRigidBody* b = worlds_[shard]->addBox(Eigen::Vector3d::Constant(half), mass, from,
+                                          Eigen::Quaterniond::Identity(), physics::kPropGroup,
+                                          physics::kPropMask, 0.8);
+  props_.push_back({b, shard});
+  b->setLinearVelocity(physics::toBt(velocity));
+  // Thrown boxes are the warm wood colour of the scene's boxes, a shade darker to tell them apart.
+  const float h = static_cast<float>(half);
+  addRenderBody(b, {{h, h, h}, 0xc08a48ffu, -1, 0});
+  thrown_.push_back(b);
+  if (static_cast<int>(thrown_.size()) > kMaxThrown) {
+    btRigidBody* oldest = thrown_.front();
+    thrown_.erase(thrown_.begin());
+    removeRenderBodies({oldest});
+    const auto prop = std::find_if(props_.begin(), props_.end(), [&](const Prop& q) { return q.body == oldest; });
+    worlds_[prop->shard]->removeBody(oldest);
+    props_.erase(prop);
+  }
+  return nextId_++;
+}
+
+bool Simulation::drag(int id, int segment, const Eigen::Vector3d& local,
+                      const Eigen::Vector3d& target) {
+  const int i = indexOf(id);
+  if (i < 0 || segment < 0 || segment >= character(i).segmentCount()) return false;
+  drag_ = {id, segment, local, target};
+  return true;
+}
+
+void Simulation::applyDrag() {
+  if (drag_.id < 0) return;
+  const int i = indexOf(drag_.id);
+  if (i < 0) {  // the character was removed while held
+    endDrag();
+    return;
+  }
+  btRigidBody* b = character(i).body(drag_.segment);
+  const btTransform& t = b->getCenterOfMassTransform();
+  const btVector3 point = t * physics::toBt(drag_.local);
+  const btVector3 rel = point - t.getOrigin();
+  const btVector3 v = b->getVelocityInLocalPoint(rel);
+  // A critically damped spring sized for the whole character (ω = 5 rad/s: it follows the
+  // pointer in about half a second), applied at one point of one segment. Explicit integration
+  // at 120 Hz is stable only while k·dt²/m and c·dt/m stay below ~1 for the segment held
+  // (a foot weighs ~1 kg against a 60 kg figure), hence the limits; and the force is capped at
+  // three body weights, so a pointer far away pulls hard but never launches the character.
+  const double mass = character(i).morphology().totalMass();
+  const double segmentMass = 1.0 / std::max(1e-6, static_cast<double>(b->getInvMass()));
+  const double dt = physics::kFixedStep;
+  const double omega = 5.0;
+  const double k = std::min(mass * omega * omega, 0.5 * segmentMass / (dt * dt));
+  const double c = std::min(2.0 * 0.9 * omega * mass, 0.5 * segmentMass / dt);
+  btVector3 force = static_cast<btScalar>(k) * (physics::toBt(drag_.target) - point) -
+                    static_cast<btScalar>(c) * v;
+  const double cap = 3.0 * mass * 9.81;
+  if (force.length() > cap) force *= static_cast<btScalar>(cap / force.length());
+  // As an impulse over the whole fixed step: Bullet clears applied forces after each of the
+  // world's sub-steps (stepSimulation ends in clearForces), so a force would act on the first only.
+  b->applyImpulse(force * static_cast<btScalar>(dt), rel);
+}
+
+bool Simulation::resetCharacter(int id) {
+  const int i = indexOf(id);
+  if (i < 0) return false;
+  Agent& old = *agents_[i];
+  const body::Morphology& m = old.body->morphology();
+  const int root = m.legFrames[0];
+  const physics::SegmentState s = old.body->segmentState(root);
+  const double heading = gait::headingOf(s.orientation);
+  // The rest pose puts the root at `center` in the character frame: place the new figure so
+  // that its root stands where the old one's is now.
+  const Eigen::Vector3d offset =
+      Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()) * m.segments[root].center;
+  const double x = s.position.x() - offset.x(), z = s.position.z() - offset.z();
+  const gait::GaitParams params = old.controller.params();
+  const gait::Goal goal = old.controller.goal();
+  const Kind kind = old.kind;
+  std::vector<btRigidBody*> oldBodies;
+  for (int k = 0; k < old.body->segmentCount(); ++k) oldBodies.push_back(old.body->body(k));
+
+  physics::World& world = *worlds_[old.shard];
+  auto fresh = std::make_unique<Agent>(world, m, Eigen::Vector3d(x, world.terrainHeight(x, z), z),
+                                       heading);
+  fresh->id = id;
+  fresh->kind = kind;
+  fresh->shard = old.shard;
+  std::replace(shardAgents_[old.shard].begin(), shardAgents_[old.shard].end(), &old, fresh.get());
+  fresh->controller.setParams(params);
+  fresh->controller.setGoal(goal);
+  // Same morphology, same number of bodies in the same order: the render entries keep their
+  // places and colours and only point at the new bodies.
+  int k = 0;
+  for (RenderBody& rb : renderBodies_)
+    if (rb.info.owner == id) rb.body = fresh->body->body(k++);
+  agents_[i] = std::move(fresh);  // the old character's bodies leave the world here
+  if (drag_.id == id) endDrag();
+  return true;
+}
+
+bool Simulation::removeCharacter(int id) {
+  const int i = indexOf(id);
+  if (i < 0) return false;
+  std::vector<btRigidBody*> bodies;
+  for (int k = 0; k < agents_[i]->body->segmentCount(); ++k) bodies.push_back(agents_[i]->body->body(k));
+  removeRenderBodies(bodies);
+  auto& inShard = shardAgents_[agents_[i]->shard];
+  inShard.erase(std::find(inShard.begin(), inShard.end(), agents_[i].get()));
+  agents_.erase(agents_.begin() + i);
+  if (drag_.id == id) endDrag();
+  return true;
+}
+
+void Simulation::removeRenderBodies(const std::vector<btRigidBody*>& bodies) {
+  const auto gone = [&](const RenderBody& rb) {
+    return std::find(bodies.begin(), bodies.end(), rb.body) != bodies.end();
+  };
+  renderBodies_.erase(std::remove_if(renderBodies_.begin(), renderBodies_.end(), gone),
+                      renderBodies_.end());
+  for (size_t i = 0; i < renderBodies_.size(); ++i) info_[i] = renderBodies_[i].info;
+  // After the entries: a reader that saw the old version reads them again (render_buffer.h).
+  header_->infoVersion.fetch_add(1);
+}
+
+void Simulation::updateFallen() {
+  const double now = time();
+  std::vector<int> toReset;
+  for (int i = 0; i < characterCount(); ++i) {
+    Agent& a = *agents_[i];
+    if (!hasFallen(*this, i)) {
+      a.fallenSince = -1;
+      continue;
+    }
+    if (a.fallenSince < 0) a.fallenSince = now;
+    if (autoResetSeconds_ > 0 && now - a.fallenSince >= autoResetSeconds_) toReset.push_back(a.id);
+  }
+  for (int id : toReset) resetCharacter(id);
 }
 
 }  // namespace gaitlab::sim

@@ -29,7 +29,7 @@ WalkResult runWalk(const WalkOptions& o) {
   WalkResult r;
   r.goalSpeed = o.speed;
   Simulation sim(1, o.seed);
-  sim.spawn(o.character, 0, 0, 0);
+  sim.spawn(o.character, 0, 0, o.heading);
   if (o.params) sim.controller(0).setParams(*o.params);
   sim.setGoal(0, {o.speed, o.turnRate});
   const body::Morphology& m = sim.character(0).morphology();
@@ -52,6 +52,12 @@ WalkResult runWalk(const WalkOptions& o) {
     return (rng >> 8) * (1.0 / 16777216.0);
   };
   const double controller0 = sim.controllerSeconds();
+  if (o.startImpulseLeft != 0 || o.startImpulseForward != 0) {
+    const Eigen::Vector3d j = gait::headingToWorld(
+        startHeading, Eigen::Vector3d(o.startImpulseLeft, 0, o.startImpulseForward));
+    sim.character(0).body(root)->applyCentralImpulse(
+        btVector3(static_cast<btScalar>(j.x()), 0, static_cast<btScalar>(j.z())));
+  }
 
   for (int step = 0; step < steps; ++step) {
     const double t = sim.time();
@@ -79,6 +85,7 @@ WalkResult runWalk(const WalkOptions& o) {
     if (o.trace && (step + 1) % 12 == 0) {
       r.trace.insert(r.trace.end(), {s.position.x(), s.position.y(), s.position.z(), h});
     }
+    if (o.observe) o.observe(sim);
     if (pushPending >= 0 && sim.time() - pushPending >= 2.0) {
       ++r.pushesSurvived;
       pushPending = -1;

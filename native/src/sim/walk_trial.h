@@ -3,6 +3,7 @@
 // `walk` subcommand, its WASM twin, the tests and the benchmark.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,14 @@ struct WalkOptions {
   double pushEvery = 0.0;    // s between pushes (the first after 2 s); phase jittered by the seed
   uint32_t seed = 1;
   bool trace = false;  // record the leg frame's path every 0.1 s
+  // Start state (the optimiser's "several start states"): the heading the character starts
+  // facing, and a horizontal impulse at its root leg frame at t = 0 in the heading frame
+  // (x = left, z = forward), N·s.
+  double heading = 0.0;
+  double startImpulseLeft = 0.0, startImpulseForward = 0.0;
+  // Called after every fixed step, before the fall check (the optimiser's objective records
+  // the leg frames here). May be empty.
+  std::function<void(const Simulation&)> observe;
 };
 
 struct WalkResult {

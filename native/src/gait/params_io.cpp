@@ -1,0 +1,182 @@
+#include "gait/params_io.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace gaitlab::gait {
+
+namespace {
+
+using nlohmann::json;
+
+// nlohmann's DOM parser, with exceptions compiled out, only says "discarded". This SAX pass
+// recovers its message (line and column) for a file that is not JSON at all.
+struct SyntaxCheck : json::json_sax_t {
+  std::string error;
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return true; }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+    error = e.what();
+    return false;
+  }
+};
+
+std::string typeName(const json& v) {
+  if (v.is_number()) return "a number";
+  if (v.is_array()) return "an array of " + std::to_string(v.size());
+  if (v.is_string()) return "a string";
+  if (v.is_object()) return "an object";
+  if (v.is_boolean()) return "a boolean";
+  return "null";
+}
+
+std::string num(double v) { return json(v).dump(); }
+
+// One value of a field: a finite number within the spec's bounds.
+std::optional<std::string> checkNumber(const json& v, const ParamSpec& s, double* out) {
+  if (!v.is_number()) return "expected a number, got " + typeName(v);
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) return std::string("not finite");
+  if (x < s.min || x > s.max)
+    return num(x) + " is outside [" + num(s.min) + ", " + num(s.max) + "]";
+  *out = x;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<Character> expected,
+                                         GaitFile* out) {
+  const json doc = json::parse(text, nullptr, false);
+  if (doc.is_discarded()) {
+    SyntaxCheck check;
+    json::sax_parse(text, &check);
+    return ParamsError{"", "not valid JSON: " + (check.error.empty() ? "parse error" : check.error)};
+  }
+  if (!doc.is_object()) return ParamsError{"", "expected a JSON object, got " + typeName(doc)};
+  static const std::set<std::string> kTopLevel = {"format", "version", "character", "params", "meta"};
+  for (const auto& item : doc.items()) {
+    if (!kTopLevel.count(item.key())) return ParamsError{item.key(), "unknown field"};
+  }
+  if (!doc.contains("format")) return ParamsError{"format", "missing"};
+  if (doc["format"] != kGaitFormat)
+    return ParamsError{"format", "expected \"" + std::string(kGaitFormat) + "\", got " + doc["format"].dump()};
+  if (!doc.contains("version")) return ParamsError{"version", "missing"};
+  if (!doc["version"].is_number_integer() || doc["version"].get<long long>() != kGaitFormatVersion)
+    return ParamsError{"version", "expected " + std::to_string(kGaitFormatVersion) + ", got " +
+                                      doc["version"].dump()};
+  if (!doc.contains("character")) return ParamsError{"character", "missing"};
+  const json& cj = doc["character"];
+  const std::optional<Character> character =
+      cj.is_string() ? characterFromName(cj.get<std::string>()) : std::nullopt;
+  if (!character) return ParamsError{"character", "expected \"biped\" or \"quadruped\", got " + cj.dump()};
+  if (expected && *expected != *character)
+    return ParamsError{"character", std::string("the file is for a ") + characterName(*character) +
+                                        ", not a " + characterName(*expected)};
+  if (doc.contains("meta") && !doc["meta"].is_object())
+    return ParamsError{"meta", "expected an object, got " + typeName(doc["meta"])};
+  if (!doc.contains("params")) return ParamsError{"params", "missing"};
+  const json& pj = doc["params"];
+  if (!pj.is_object()) return ParamsError{"params", "expected an object, got " + typeName(pj)};
+
+  // Parse into a copy of the target: a refused file leaves *out as it was.
+  GaitFile file;
+  file.character = *character;
+  file.params = out->params;
+  std::optional<ParamsError> error;
+  std::set<std::string> known;
+  forEachParam(*character, file.params, [&](const ParamField& f) {
+    known.insert(f.spec.name);
+    if (error) return;
+    const auto it = pj.find(f.spec.name);
+    if (it == pj.end()) {
+      error = ParamsError{f.spec.name, "missing"};
+      return;
+    }
+    const json& v = *it;
+    if (f.spec.knots == 1) {
+      if (auto e = checkNumber(v, f.spec, &f.values[0])) error = ParamsError{f.spec.name, *e};
+      return;
+    }
+    if (!v.is_array() || static_cast<int>(v.size()) != f.spec.knots) {
+      error = ParamsError{f.spec.name, "expected an array of " + std::to_string(f.spec.knots) +
+                                           " numbers (motion graph knots), got " + typeName(v)};
+      return;
+    }
+    for (int k = 0; k < f.spec.knots && !error; ++k) {
+      if (auto e = checkNumber(v[k], f.spec, &f.values[k]))
+        error = ParamsError{f.spec.name + "[" + std::to_string(k) + "]", *e};
+    }
+  });
+  if (error) return error;
+  for (const auto& item : pj.items()) {
+    if (!known.count(item.key()))
+      return ParamsError{item.key(), std::string("unknown parameter for a ") + characterName(*character)};
+  }
+  if (doc.contains("meta")) file.meta = doc["meta"];
+  *out = std::move(file);
+  return std::nullopt;
+}
+
+std::optional<ParamsError> loadGaitFile(const std::string& path, std::optional<Character> expected,
+                                        GaitFile* out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return ParamsError{"", "cannot be read"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseGaitFile(text.str(), expected, out);
+}
+
+std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::json& meta, int indent) {
+  using ordered = nlohmann::ordered_json;
+  ordered p = ordered::object();
+  GaitParams copy = params;
+  forEachParam(c, copy, [&](const ParamField& f) {
+    if (f.spec.knots == 1) {
+      p[f.spec.name] = f.values[0];
+    } else {
+      p[f.spec.name] = std::vector<double>(f.values, f.values + f.spec.knots);
+    }
+  });
+  ordered doc = {{"format", kGaitFormat}, {"version", kGaitFormatVersion},
+                 {"character", characterName(c)}, {"params", p}};
+  if (!meta.empty()) doc["meta"] = ordered::parse(meta.dump(), nullptr, false);
+  if (indent < 0) return doc.dump();
+  // Readable layout for files people edit and diff: one parameter per line, a motion graph's
+  // knots together on its line. Every value is still written by nlohmann (shortest text that
+  // reads back to the same double).
+  const std::string pad(indent, ' ');
+  std::string out = "{\n";
+  bool firstKey = true;
+  for (const auto& item : doc.items()) {
+    out += (firstKey ? "" : ",\n") + pad + ordered(item.key()).dump() + ": ";
+    firstKey = false;
+    if (item.key() != "params") {
+      out += item.value().dump();
+      continue;
+    }
+    out += "{\n";
+    bool firstParam = true;
+    for (const auto& param : item.value().items()) {
+      out += (firstParam ? "" : ",\n") + pad + pad + ordered(param.key()).dump() + ": " +
+             param.value().dump();
+      firstParam = false;
+    }
+    out += "\n" + pad + "}";
+  }
+  return out + "\n}\n";
+}
+
+}  // namespace gaitlab::gait

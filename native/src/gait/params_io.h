@@ -1,0 +1,53 @@
+// Gait files: a character's GaitParams as JSON, the one format used by the CLI (`--params`),
+// the web page (export, import, share links), the optimiser's output and the shipped presets:
+//
+//   {"format": "gaitlab-gait", "version": 1, "character": "biped" | "quadruped",
+//    "params": {"<schema name>": number | [4 numbers], ...},
+//    "meta": {...optional: source, command, seed, objective, date, ...}}
+//
+// Every schema field must be present, and nothing else; values finite and within the schema's
+// bounds. A file that breaks any rule is refused with the field named, and the target is left
+// untouched (the file is parsed into a copy, committed only when all of it is valid).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "gait/params.h"
+#include "gait/schema.h"
+
+namespace gaitlab::gait {
+
+constexpr const char* kGaitFormat = "gaitlab-gait";
+constexpr int kGaitFormatVersion = 1;
+
+// Why a file was refused: `field` is the offending key (a schema name such as
+// "legFrame.pitch", or a top-level key such as "version"; empty when the text is not JSON at
+// all), `message` what is wrong with it.
+struct ParamsError {
+  std::string field;
+  std::string message;
+  std::string describe() const { return field.empty() ? message : field + ": " + message; }
+};
+
+struct GaitFile {
+  Character character = Character::Biped;
+  GaitParams params;
+  nlohmann::json meta = nlohmann::json::object();
+};
+
+// Parses and validates `text`. With `expected`, a file for another character is refused.
+// On success fills *out and returns nullopt; on failure returns the error and leaves *out as it
+// was.
+std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<Character> expected,
+                                         GaitFile* out);
+
+// The same, reading a file from disk (an unreadable file is an error with an empty field).
+std::optional<ParamsError> loadGaitFile(const std::string& path, std::optional<Character> expected,
+                                        GaitFile* out);
+
+// Serialises params in schema order; doubles print with enough digits to read back bit-exactly.
+std::string gaitFileJson(Character c, const GaitParams& params,
+                         const nlohmann::json& meta = nlohmann::json::object(), int indent = 2);
+
+}  // namespace gaitlab::gait

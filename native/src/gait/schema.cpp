@@ -1,0 +1,262 @@
+#include "gait/schema.h"
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+
+#include "gait/defaults.h"
+
+namespace gaitlab::gait {
+
+namespace {
+
+// Groups, in the order a parameter panel shows them.
+constexpr const char* kTiming = "timing";
+constexpr const char* kGaitDiagram = "gait diagram";
+constexpr const char* kLegFrame = "leg frame";
+constexpr const char* kStance = "stance";
+constexpr const char* kSwing = "swing";
+constexpr const char* kFootAngles = "foot angles";
+constexpr const char* kFootPlacement = "foot placement";
+constexpr const char* kJointGains = "joint gains";
+
+struct Bounds {
+  double min, max;
+};
+
+// A schema entry and where its knots sit inside any GaitParams (byte offset: GaitParams holds
+// only doubles, in plain structs and arrays, so an offset taken on one instance is valid on all).
+struct Entry {
+  ParamSpec spec;
+  std::ptrdiff_t offset;
+};
+
+struct Table {
+  std::vector<Entry> entries;
+  std::vector<ParamSpec> specs;
+  int dimension = 0;
+};
+
+// Leg-frame and leg names per character, in morphology order (body/morphology.cpp: the
+// quadruped's legs are front.left, front.right, back.left, back.right; legFrames = {front, back}).
+const std::vector<std::string>& legFrameNames(Character c) {
+  static const std::vector<std::string> biped = {"legFrame"}, quadruped = {"front", "back"};
+  return c == Character::Biped ? biped : quadruped;
+}
+const std::vector<std::string>& legNames(Character c) {
+  static const std::vector<std::string> biped = {"left", "right"},
+                                        quadruped = {"frontLeft", "frontRight", "backLeft", "backRight"};
+  return c == Character::Biped ? biped : quadruped;
+}
+
+// The schema itself. Bounds are wide enough for the optimiser to explore (its steps are a tenth
+// of the range, thesis §3.3) and physically sensible; gains whose sensible magnitude differs
+// between the 70 kg biped and the lighter-legged quadruped get bounds per character so that a
+// step stays proportionate.
+Table build(Character c) {
+  Table t;
+  GaitParams proto;
+  const bool biped = c == Character::Biped;
+  const auto add = [&](std::string name, const char* group, Bounds b, const char* unit,
+                       const char* description, double* values, int knots) {
+    const auto offset = reinterpret_cast<const char*>(values) - reinterpret_cast<const char*>(&proto);
+    t.entries.push_back({{std::move(name), group, b.min, b.max, unit, description, knots}, offset});
+    t.dimension += knots;
+  };
+  const auto scalar = [&](std::string name, const char* group, Bounds b, const char* unit,
+                          const char* description, double& field) {
+    add(std::move(name), group, b, unit, description, &field, 1);
+  };
+  const auto graph = [&](std::string name, const char* group, Bounds b, const char* unit,
+                         const char* description, MotionGraph& g) {
+    add(std::move(name), group, b, unit, description, g.knots, MotionGraph::kKnots);
+  };
+
+  // ---- per controller (§3.3: "the parameter tweaked per controller was the gait period") ----
+  scalar("period", kTiming, {0.3, 3.0}, "s", "gait period T: one full cycle of every leg (§3.1.1)",
+         proto.period);
+  scalar("maxAcceleration", kFootPlacement, {0.1, 5.0}, "m/s²",
+         "bound on how fast the desired velocity ramps towards the goal speed (§3.1.6)",
+         proto.maxAcceleration);
+
+  // ---- joint gains (§3.1.7), shared by all legs ----
+  JointGains& g = proto.gains;
+  scalar("gains.hipKp", kJointGains, biped ? Bounds{0, 1500} : Bounds{0, 400}, "N·m/rad",
+         "hip PD proportional gain", g.hipKp);
+  scalar("gains.hipKd", kJointGains, biped ? Bounds{0, 60} : Bounds{0, 20}, "N·m·s/rad",
+         "hip PD derivative gain", g.hipKd);
+  scalar("gains.kneeKp", kJointGains, biped ? Bounds{0, 1500} : Bounds{0, 400}, "N·m/rad",
+         "knee PD proportional gain (target from two-link IK, §3.1.5)", g.kneeKp);
+  scalar("gains.kneeKd", kJointGains, biped ? Bounds{0, 60} : Bounds{0, 20}, "N·m·s/rad",
+         "knee PD derivative gain", g.kneeKd);
+  scalar("gains.ankleKp", kJointGains, biped ? Bounds{0, 40} : Bounds{0, 20}, "N·m/rad",
+         "ankle PD proportional gain (foot take-off and strike angles)", g.ankleKp);
+  // A foot's roll inertia is ~0.003 kg·m²: an explicit PD at 120 Hz needs k_d·dt/I < ~1.
+  scalar("gains.ankleKd", kJointGains, {0, 0.3}, "N·m·s/rad", "ankle PD derivative gain",
+         g.ankleKd);
+  scalar("gains.stanceAnkleKp", kJointGains, biped ? Bounds{0, 3000} : Bounds{0, 800}, "N·m/rad",
+         "stance ankle PD proportional gain, foot relative to its shin (§3.1.7)", g.stanceAnkleKp);
+  scalar("gains.stanceAnkleKd", kJointGains, biped ? Bounds{0, 40} : Bounds{0, 15}, "N·m·s/rad",
+         "stance ankle PD derivative gain", g.stanceAnkleKd);
+  if (!biped) {  // the biped has no spine
+    scalar("gains.spineKp", kJointGains, {0, 800}, "N·m/rad",
+           "spine PD proportional gain (each of the spine links)", g.spineKp);
+    scalar("gains.spineKd", kJointGains, {0, 40}, "N·m·s/rad", "spine PD derivative gain",
+           g.spineKd);
+  }
+  scalar("gains.stanceKneeFlexion", kStance, {0, 1.0}, "rad", "knee bend the stance knee's PD holds",
+         g.stanceKneeFlexion);
+  scalar("gains.hipTwistScale", kJointGains, {0, 1}, "1",
+         "share of hip torque kept about the thigh's own axis (its small inertia needs less)",
+         g.hipTwistScale);
+  scalar("gains.maxTorque", kJointGains, biped ? Bounds{20, 1000} : Bounds{10, 400}, "N·m",
+         "clamp on the magnitude of every joint torque", g.maxTorque);
+
+  // ---- per leg frame (§3.3: orientation, height, foot-tracking gain, h_sw, t_sw, F_h gains,
+  //      K_v, F_D's c0..c3, take-off and strike angles, s, step lengths) ----
+  for (size_t i = 0; i < legFrameNames(c).size(); ++i) {
+    LegFrameParams& f = proto.legFrames[i];
+    const std::string n = legFrameNames(c)[i] + ".";
+    graph(n + "pitch", kLegFrame, {-0.5, 0.5}, "rad",
+          "desired leg-frame pitch over the gait phase, heading frame (+ = nose down) (§3.1.3)", f.pitch);
+    graph(n + "roll", kLegFrame, {-0.3, 0.3}, "rad", "desired leg-frame roll over the gait phase (§3.1.3)",
+          f.roll);
+    graph(n + "yaw", kLegFrame, {-0.3, 0.3}, "rad",
+          "desired leg-frame yaw relative to the heading, over the gait phase (§3.1.3)", f.yaw);
+    graph(n + "heightOffset", kLegFrame, {-0.25, 0.1}, "m",
+          "desired leg-frame height relative to standing height, over the gait phase (§3.1.4)",
+          f.heightOffset);
+    scalar(n + "orientationKp", kLegFrame, biped ? Bounds{0, 3000} : Bounds{0, 800}, "N·m/rad",
+           "leg-frame orientation PD gain, torque delivered through the stance legs (eq. 3.4–3.5)",
+           f.orientationKp);
+    scalar(n + "orientationKd", kLegFrame, biped ? Bounds{0, 200} : Bounds{0, 50}, "N·m·s/rad",
+           "leg-frame orientation PD derivative gain", f.orientationKd);
+    scalar(n + "heightKp", kStance, biped ? Bounds{0, 6000} : Bounds{0, 2000}, "N/m",
+           "F_h proportional gain: stance force towards the height graph (§3.1.4)", f.heightKp);
+    scalar(n + "heightKd", kStance, biped ? Bounds{0, 600} : Bounds{0, 200}, "N·s/m",
+           "F_h derivative gain", f.heightKd);
+    scalar(n + "velocityGain", kStance, {0, 400}, "N·s/m",
+           "K_v of the stance velocity force F_v = K_v (v_d − v) (eq. 3.6)", f.velocityGain);
+    scalar(n + "fdC0", kStance, {-200, 200}, "N", "c0 of F_D(D): vertical force at D = 0 (eq. 3.8)",
+           f.fd[0]);
+    scalar(n + "fdC1", kStance, {-1000, 1000}, "N/m", "c1 of F_D(D): vertical force per metre of D (eq. 3.8)",
+           f.fd[1]);
+    scalar(n + "fdC2", kStance, {-200, 200}, "N", "c2 of F_D(D): forward force at D = 0 (eq. 3.8)",
+           f.fd[2]);
+    scalar(n + "fdC3", kStance, {-1000, 1000}, "N/m", "c3 of F_D(D): forward force per metre of D (eq. 3.8)",
+           f.fd[3]);
+    graph(n + "footTrackingGain", kSwing, {0, 400}, "N/m",
+          "k_ft: swing-foot virtual force gain over swing progress; K_d = 0.1 k_ft (§3.1.4)",
+          f.footTrackingGain);
+    graph(n + "stepHeight", kSwing, {0, 0.25}, "m", "h_sw: swing foot height over swing progress (§3.1.6)",
+          f.stepHeight);
+    graph(n + "swingEase", kSwing, {0, 1}, "1",
+          "t_sw: share of the way from lift-off to strike point over swing progress (§3.1.6)",
+          f.swingEase);
+    scalar(n + "toeOffAngle", kFootAngles, {-0.8, 0.8}, "rad",
+           "foot pitch targeted at lift-off (+ = toes down) (§3.1.6)", f.toeOffAngle);
+    scalar(n + "strikeAngle", kFootAngles, {-0.8, 0.8}, "rad",
+           "foot pitch targeted at strike (− = toes up) (§3.1.6)", f.strikeAngle);
+    scalar(n + "footPlacementScale", kFootPlacement, {0, 1}, "s",
+           "s of P1 = P_lf + (v − v_d)·s: velocity feedback on the strike point (§3.1.6)",
+           f.footPlacementScale);
+    scalar(n + "stepSideways", kFootPlacement, {0, 0.3}, "m",
+           "nominal strike point's sideways offset from the leg frame's centre", f.stepSideways);
+    scalar(n + "stepForward", kFootPlacement, {-0.3, 0.3}, "m",
+           "nominal strike point's forward offset from the hip", f.stepForward);
+  }
+
+  // ---- per leg (§3.3: step trigger, duty factor, foot take-off time, foot strike time) ----
+  for (size_t i = 0; i < legNames(c).size(); ++i) {
+    LegParams& l = proto.legs[i];
+    const std::string n = legNames(c)[i] + ".";
+    scalar(n + "stepTrigger", kGaitDiagram, {0, 1}, "1",
+           "gait phase at which the leg lifts off (§3.1.1)", l.stepTrigger);
+    scalar(n + "dutyFactor", kGaitDiagram, {0.2, 0.9}, "1", "share of the gait cycle spent in stance (§3.1.1)",
+           l.dutyFactor);
+    scalar(n + "toeOffTime", kFootAngles, {0, 1}, "1",
+           "stance progress after which the foot pitches to the take-off angle", l.toeOffTime);
+    scalar(n + "strikeTime", kFootAngles, {0, 1}, "1",
+           "swing progress after which the foot pitches to the strike angle", l.strikeTime);
+  }
+
+  for (const Entry& e : t.entries) t.specs.push_back(e.spec);
+  return t;
+}
+
+const Table& table(Character c) {
+  static const Table biped = build(Character::Biped);
+  static const Table quadruped = build(Character::Quadruped);
+  return c == Character::Biped ? biped : quadruped;
+}
+
+double* at(GaitParams& p, std::ptrdiff_t offset) {
+  return reinterpret_cast<double*>(reinterpret_cast<char*>(&p) + offset);
+}
+
+}  // namespace
+
+const char* characterName(Character c) { return c == Character::Biped ? "biped" : "quadruped"; }
+
+std::optional<Character> characterFromName(const std::string& name) {
+  if (name == "biped") return Character::Biped;
+  if (name == "quadruped") return Character::Quadruped;
+  return std::nullopt;
+}
+
+Character characterOf(const body::Morphology& m) {
+  return m.legFrames.size() == 1 ? Character::Biped : Character::Quadruped;
+}
+
+void forEachParam(Character c, GaitParams& params, const std::function<void(const ParamField&)>& visit) {
+  for (const Entry& e : table(c).entries) visit(ParamField{e.spec, at(params, e.offset)});
+}
+
+const std::vector<ParamSpec>& paramSpecs(Character c) { return table(c).specs; }
+
+int paramDimension(Character c) { return table(c).dimension; }
+
+std::vector<double> toVector(Character c, const GaitParams& params) {
+  std::vector<double> v;
+  v.reserve(paramDimension(c));
+  GaitParams copy = params;
+  forEachParam(c, copy, [&](const ParamField& f) { v.insert(v.end(), f.values, f.values + f.spec.knots); });
+  return v;
+}
+
+void fromVector(Character c, const std::vector<double>& values, GaitParams* params) {
+  size_t i = 0;
+  forEachParam(c, *params, [&](const ParamField& f) {
+    for (int k = 0; k < f.spec.knots; ++k) f.values[k] = values.at(i++);
+  });
+}
+
+void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi) {
+  lo->clear();
+  hi->clear();
+  for (const ParamSpec& s : paramSpecs(c)) {
+    lo->insert(lo->end(), s.knots, s.min);
+    hi->insert(hi->end(), s.knots, s.max);
+  }
+}
+
+std::string schemaJson(std::optional<Character> only) {
+  using ordered = nlohmann::ordered_json;
+  ordered characters = ordered::object();
+  for (Character c : {Character::Biped, Character::Quadruped}) {
+    if (only && *only != c) continue;
+    GaitParams defaults = defaultParams(c);
+    ordered entries = ordered::array();
+    forEachParam(c, defaults, [&](const ParamField& f) {
+      const ParamSpec& s = f.spec;
+      ordered d = s.knots == 1 ? ordered(f.values[0])
+                               : ordered(std::vector<double>(f.values, f.values + s.knots));
+      entries.push_back({{"name", s.name}, {"group", s.group}, {"min", s.min}, {"max", s.max},
+                         {"default", d}, {"unit", s.unit}, {"description", s.description},
+                         {"knots", s.knots}});
+    });
+    characters[characterName(c)] = entries;
+  }
+  return ordered{{"version", kSchemaVersion}, {"characters", characters}}.dump();
+}
+
+}  // namespace gaitlab::gait

@@ -1,0 +1,174 @@
+#include "optimize/objective.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "gait/heading.h"
+#include "optimize/random.h"
+#include "sim/walk_trial.h"
+
+namespace gaitlab::optimize {
+
+namespace {
+constexpr double kGravity = 9.81;
+}
+
+void forEachSetting(ObjectiveSettings& s, const std::function<void(const SettingSpec&, double&)>& visit) {
+  visit({"wd", 0, 1000, "1", "w_d: weight of motion deviation f_d (eq. 3.10)"}, s.wd);
+  visit({"wv", 0, 1000, "s²/m²", "w_v: weight of velocity deviation f_v (eq. 3.10)"}, s.wv);
+  visit({"wa", 0, 1000, "1", "w_h: weight of leg-frame acceleration f_a (eq. 3.10)"}, s.wa);
+  visit({"wr", 0, 1000, "1/rad²", "w_r: weight of leg-frame rotation deviation f_r (eq. 3.10)"}, s.wr);
+  visit({"fallPenalty", 0, 1e6, "1", "added for a fall, scaled by 1 + the share of the episode left"},
+        s.fallPenalty);
+  visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
+  visit({"warmup", 0, 60, "s", "time before travel and velocity are measured"}, s.warmup);
+  double starts = s.starts;
+  visit({"starts", 1, 32, "1", "start states per goal speed (the first stands still)"}, starts);
+  s.starts = static_cast<int>(std::lround(starts));
+  visit({"startImpulse", 0, 500, "N·s", "horizontal nudge at t = 0 for start states after the first"},
+        s.startImpulse);
+  visit({"turnRate", -3, 3, "rad/s", "goal turn rate"}, s.turnRate);
+  visit({"pushImpulse", 0, 1000, "N·s", "lateral pushes during an episode (0: none)"}, s.pushImpulse);
+  visit({"pushEvery", 0.5, 60, "s", "time between pushes, phase jittered"}, s.pushEvery);
+}
+
+std::string setSetting(ObjectiveSettings& s, const std::string& name, double value) {
+  std::string error = "unknown objective setting '" + name + "'";
+  forEachSetting(s, [&](const SettingSpec& spec, double& field) {
+    if (name != spec.name) return;
+    if (!std::isfinite(value) || value < spec.min || value > spec.max) {
+      error = name + ": " + nlohmann::json(value).dump() + " is outside [" + nlohmann::json(spec.min).dump() +
+              ", " + nlohmann::json(spec.max).dump() + "]";
+    } else {
+      field = value;
+      error.clear();
+    }
+  });
+  return error;
+}
+
+std::string settingsJson(const ObjectiveSettings& settings) {
+  ObjectiveSettings s = settings;
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  forEachSetting(s, [&](const SettingSpec& spec, double& v) { j[spec.name] = v; });
+  j["speeds"] = s.speeds;
+  return j.dump();
+}
+
+ObjectiveRecorder::ObjectiveRecorder(const ObjectiveSettings& settings, double goalSpeed,
+                                     double startHeading, double dt)
+    : settings_(settings), goalSpeed_(goalSpeed), startHeading_(startHeading), dt_(dt) {}
+
+void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count) {
+  const double heading = goalHeading(time);
+  const Eigen::Quaterniond goalFrame = gait::headingQuat(heading);
+  if (static_cast<int>(lastVelocity_.size()) != count) lastVelocity_.assign(count, Eigen::Vector3d::Zero());
+  const bool first = frameSamples_ == 0;
+  for (int i = 0; i < count; ++i) {
+    const LegFrameSample& f = frames[i];
+    const double posture = (f.heightAboveGround - f.standingHeight) / f.standingHeight;
+    postureSum_ += posture * posture;
+    const double angle = goalFrame.angularDistance(f.orientation);
+    rotationSum_ += angle * angle;
+    if (!first) {
+      const Eigen::Vector3d a = (f.velocity - lastVelocity_[i]) / (time - lastTime_);
+      accelSum_ += a.squaredNorm() / (kGravity * kGravity);
+      ++accelSamples_;
+    }
+    lastVelocity_[i] = f.velocity;
+  }
+  frameSamples_ += count;
+  if (time > settings_.warmup + 1e-9) {
+    // Root leg frame's horizontal velocity in the goal heading frame (x left, z forward).
+    const Eigen::Vector3d v = gait::worldToHeading(heading, frames[0].velocity);
+    const double forwardError = v.z() - goalSpeed_;
+    velocitySum_ += forwardError * forwardError + v.x() * v.x();
+    ++velocityCount_;
+    travel_ += v.z() * dt_;
+    measuredTime_ += dt_;
+  }
+  lastTime_ = time;
+}
+
+ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime) const {
+  ObjectiveTerms t;
+  const double goalTravel = goalSpeed_ * measuredTime_;
+  const double travel = (travel_ - goalTravel) / std::max(std::abs(goalTravel), 1.0);
+  const double posture = frameSamples_ ? postureSum_ / frameSamples_ : 0.0;
+  t.fd = travel * travel + posture;
+  t.fv = velocityCount_ ? velocitySum_ / velocityCount_ : 0.0;
+  t.fa = accelSamples_ ? accelSum_ / accelSamples_ : 0.0;
+  t.fr = frameSamples_ ? rotationSum_ / frameSamples_ : 0.0;
+  t.fell = fell;
+  t.seconds = fell ? fallTime : lastTime_;
+  if (fell) {
+    const double left = std::clamp((settings_.seconds - fallTime) / settings_.seconds, 0.0, 1.0);
+    t.fall = settings_.fallPenalty * (1.0 + left);
+  }
+  t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr + t.fall;
+  return t;
+}
+
+ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
+                          const ObjectiveSettings& settings, double speed, int start, uint32_t seed) {
+  sim::WalkOptions w;
+  w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
+  w.params = &params;
+  w.speed = speed;
+  w.turnRate = settings.turnRate;
+  w.seconds = settings.seconds;
+  w.pushImpulse = settings.pushImpulse;
+  w.pushEvery = settings.pushEvery;
+  w.seed = seed + 7919u * static_cast<uint32_t>(start);
+  if (start > 0) {
+    // A nudge in a direction drawn from the seed: the same start state for every candidate.
+    Random r((static_cast<uint64_t>(seed) << 32) ^ static_cast<uint64_t>(start));
+    const double angle = r.uniform(0.0, 2.0 * gait::kPi);
+    w.startImpulseLeft = settings.startImpulse * std::sin(angle);
+    w.startImpulseForward = settings.startImpulse * std::cos(angle);
+  }
+  ObjectiveRecorder recorder(settings, speed, w.heading, physics::kFixedStep);
+  std::vector<LegFrameSample> frames;
+  w.observe = [&](const sim::Simulation& s) {
+    const physics::Character& ch = s.character(0);
+    const body::Morphology& m = ch.morphology();
+    frames.resize(m.legFrames.size());
+    for (size_t i = 0; i < m.legFrames.size(); ++i) {
+      const int lf = m.legFrames[i];
+      const physics::SegmentState st = ch.segmentState(lf);
+      frames[i] = {st.position, st.linearVelocity, st.orientation,
+                   st.position.y() - s.groundHeight(st.position.x(), st.position.z()),
+                   m.segments[lf].center.y()};
+    }
+    recorder.add(s.time(), frames.data(), static_cast<int>(frames.size()));
+  };
+  const sim::WalkResult r = sim::runWalk(w);
+  return recorder.finish(r.fell, r.fallTime);
+}
+
+ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
+                        const ObjectiveSettings& settings, uint32_t seed) {
+  ObjectiveTerms mean;
+  int episodes = 0;
+  for (double speed : settings.speeds) {
+    for (int start = 0; start < settings.starts; ++start) {
+      const ObjectiveTerms t = runEpisode(c, params, settings, speed, start, seed);
+      mean.fd += t.fd;
+      mean.fv += t.fv;
+      mean.fa += t.fa;
+      mean.fr += t.fr;
+      mean.fall += t.fall;
+      mean.total += t.total;
+      mean.seconds += t.seconds;
+      mean.fell = mean.fell || t.fell;
+      ++episodes;
+    }
+  }
+  if (episodes) {
+    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.fall, &mean.total}) *v /= episodes;
+  }
+  return mean;
+}
+
+}  // namespace gaitlab::optimize

@@ -1,0 +1,122 @@
+// The optimiser's objective (thesis §3.3, eq. 3.10):
+//
+//   f = w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r  (+ a fall penalty)
+//
+// f_d motion deviation, f_v velocity deviation, f_a leg-frame acceleration, f_r leg-frame
+// rotation deviation. The thesis names the terms but not their formulas (and its original code
+// ran the objective, the reference gait and the physics on three different clocks: REFERENCE.md
+// defect 9). Here every term is measured on the simulation's own clock, once per fixed step, in
+// the goal heading frame: the frame that starts at the character's start heading and turns at
+// the goal turn rate. The reference is that goal, never the gait's own parameters, so the
+// optimiser cannot lower a term by redefining what the controller aims at:
+//
+//   f_d  (travel deviation)² + (posture deviation)²: the distance walked along the goal heading
+//        after the warm-up against goal speed × time, relative to max(that distance, 1 m); and
+//        the leg frames' mean height above the ground against their standing height, relative
+//        to it. The thesis used "desired travel distance and leg IK angles and positions" as
+//        its stand-in for motion capture; standing height is ours.
+//   f_v  mean over steps after the warm-up of |v − v_goal|², (m/s)², the root leg frame's
+//        horizontal velocity in the goal heading frame against (0 left, goal speed forward).
+//   f_a  mean over steps and leg frames of |a|²/g², a = the leg frame's linear acceleration
+//        (finite difference of its velocity over one step).
+//   f_r  mean over steps and leg frames of θ², θ the angle (rad) of the rotation from the goal
+//        heading frame (upright, facing the goal heading) to the leg frame.
+//
+// A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
+// any fall scores worse than any walk whose terms stay below fallPenalty, and a later fall
+// scores better than an earlier one, so a search that starts from a falling gait climbs
+// towards walking.
+#pragma once
+#include <Eigen/Geometry>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gait/schema.h"
+
+namespace gaitlab::optimize {
+
+// How candidates are scored: weights of eq. 3.10 and the episodes each candidate walks.
+struct ObjectiveSettings {
+  double wd = 1.0, wv = 1.0, wa = 1.0, wr = 1.0;  // w_d, w_v, w_h, w_r of eq. 3.10
+  double fallPenalty = 100.0;
+  double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
+  double warmup = 1.0;             // s before travel and velocity are measured
+  // Episodes per evaluation: every goal speed × every start state; the objective is their mean.
+  std::vector<double> speeds = {1.0};
+  int starts = 1;                // start state 0 stands still; the others get a random nudge
+  double startImpulse = 10.0;    // N·s, horizontal, random direction, for starts 1..N-1
+  double turnRate = 0.0;         // goal turn rate, rad/s
+  double pushImpulse = 0.0;      // N·s lateral pushes during the episode (0 = none)
+  double pushEvery = 2.0;        // s between pushes, phase jittered
+};
+
+// The scalar settings as a schema-style table (name, bounds, default, unit, description), so
+// they are read, checked and exported the same way as gait parameters. `speeds` is a list and
+// is handled separately (`speeds` in JSON, --speeds on the command line).
+struct SettingSpec {
+  const char* name;
+  double min, max;
+  const char* unit;
+  const char* description;
+};
+void forEachSetting(ObjectiveSettings& s, const std::function<void(const SettingSpec&, double&)>& visit);
+// Sets one scalar setting by name; returns an error message, empty on success.
+std::string setSetting(ObjectiveSettings& s, const std::string& name, double value);
+std::string settingsJson(const ObjectiveSettings& s);  // {"wd":1,...,"speeds":[...]}
+
+struct ObjectiveTerms {
+  double fd = 0, fv = 0, fa = 0, fr = 0;
+  double fall = 0;        // the fall penalty, 0 if it did not fall
+  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + fall
+  bool fell = false;
+  double seconds = 0;     // simulated
+};
+
+// What the recorder sees of one leg frame after a step.
+struct LegFrameSample {
+  Eigen::Vector3d position;   // world, m
+  Eigen::Vector3d velocity;   // world, m/s
+  Eigen::Quaterniond orientation;
+  double heightAboveGround;   // m
+  double standingHeight;      // m, its rest-pose height
+};
+
+// Accumulates the terms of one episode step by step (nothing stored per step). Leg frame 0 is
+// the root (the one whose travel and velocity count).
+class ObjectiveRecorder {
+ public:
+  // goalSpeed (m/s) and the goal heading frame's start: startHeading (rad) at t = 0.
+  ObjectiveRecorder(const ObjectiveSettings& settings, double goalSpeed, double startHeading, double dt);
+
+  // The state after the step that ended at `time` (s, the simulation's clock).
+  void add(double time, const LegFrameSample* frames, int count);
+
+  // Terms over what was recorded; `fell` at `fallTime` adds the fall penalty.
+  ObjectiveTerms finish(bool fell, double fallTime) const;
+
+  double goalHeading(double time) const { return startHeading_ + settings_.turnRate * time; }
+
+ private:
+  ObjectiveSettings settings_;
+  double goalSpeed_, startHeading_, dt_;
+  double travel_ = 0, measuredTime_ = 0;    // along the goal heading, after the warm-up
+  double velocitySum_ = 0;  int velocityCount_ = 0;
+  double postureSum_ = 0, accelSum_ = 0, rotationSum_ = 0;
+  int frameSamples_ = 0, accelSamples_ = 0;
+  std::vector<Eigen::Vector3d> lastVelocity_;
+  double lastTime_ = 0;
+};
+
+// One episode: the character walks with `params` from start state `start` at goal `speed`
+// (sim::runWalk with the recorder observing every step). `seed` fixes the start nudge's
+// direction and the pushes' phases.
+ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
+                          const ObjectiveSettings& settings, double speed, int start, uint32_t seed);
+
+// The objective of a parameter set: the mean over every speed × start state. Deterministic:
+// the same inputs give the same bits (each episode is its own single-threaded simulation).
+ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
+                        const ObjectiveSettings& settings, uint32_t seed);
+
+}  // namespace gaitlab::optimize

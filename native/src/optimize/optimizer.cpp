@@ -1,0 +1,203 @@
+#include "optimize/optimizer.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace gaitlab::optimize {
+
+const char* methodName(Method m) { return m == Method::Greedy ? "greedy" : "cmaes"; }
+
+std::vector<double> perturb(const std::vector<double>& x, const std::vector<double>& lo,
+                            const std::vector<double>& hi, double probability, double scale, Random& rng) {
+  std::vector<double> y = x;
+  for (size_t i = 0; i < y.size(); ++i) {
+    // Both numbers are drawn for every coordinate, changed or not, so that coordinate i's fate
+    // does not shift the random stream of the coordinates after it.
+    const double u = rng.uniform();
+    const double step = rng.uniform(-scale, scale) * (hi[i] - lo[i]);
+    if (u < probability) y[i] = std::clamp(y[i] + step, lo[i], hi[i]);
+  }
+  return y;
+}
+
+Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start)
+    : options_(options), rng_(options.seed), start_(start), best_(start),
+      bestObjective_(std::numeric_limits<double>::infinity()), pool_(std::max(1, options.threads)) {
+  gait::bounds(options.character, &lo_, &hi_);
+  // A start outside the bounds (hand-edited in code, not loaded from a file) is brought inside.
+  bestVector_ = gait::toVector(options.character, start);
+  for (size_t i = 0; i < bestVector_.size(); ++i) bestVector_[i] = std::clamp(bestVector_[i], lo_[i], hi_[i]);
+}
+
+Generation Optimizer::step() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<std::vector<double>> points = propose();
+  const int k = static_cast<int>(points.size());
+  std::vector<gait::GaitParams> candidates(k, start_);
+  for (int i = 0; i < k; ++i) gait::fromVector(options_.character, points[i], &candidates[i]);
+
+  // The same episodes (start states, push phases) for every candidate of every generation, so
+  // objectives are comparable; they follow from the search seed.
+  const uint32_t episodeSeed = static_cast<uint32_t>(options_.seed * 2654435761u + 12345u);
+  std::vector<ObjectiveTerms> results(k);
+  std::atomic<int> next{0};
+  // One task per evaluation: each thread takes the next candidate until none are left (falls
+  // end episodes early, so evaluations differ in cost). Results land in their own slot.
+  pool_.parallelFor(pool_.size(), [&](int, int, int) {
+    for (int i = next.fetch_add(1); i < k; i = next.fetch_add(1))
+      results[i] = evaluate(options_.character, candidates[i], options_.objective, episodeSeed);
+  });
+  evaluations_ += k;
+  ++generation_;
+
+  Generation g;
+  g.index = generation_;
+  int winner = -1;
+  for (int i = 0; i < k; ++i) {
+    if (results[i].total < bestObjective_ && (winner < 0 || results[i].total < results[winner].total)) winner = i;
+  }
+  if (winner >= 0) {
+    g.improved = std::isfinite(bestObjective_);
+    bestObjective_ = results[winner].total;
+    bestTerms_ = results[winner];
+    bestVector_ = points[winner];
+    best_ = candidates[winner];
+  }
+  tell(points, results);
+  g.bestObjective = bestObjective_;
+  g.bestTerms = bestTerms_;
+  g.evaluations = evaluations_;
+  g.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return g;
+}
+
+namespace {
+
+// ---- greedy stochastic local search (thesis §3.3) ------------------------------------------
+class Greedy : public Optimizer {
+ public:
+  Greedy(const SearchOptions& o, const gait::GaitParams& start) : Optimizer(o, start) {}
+
+ protected:
+  std::vector<std::vector<double>> propose() override {
+    // The current best unchanged (it doubles as a determinism check), then K−1 perturbed copies.
+    std::vector<std::vector<double>> points = {bestVector_};
+    for (int i = 1; i < options_.candidates; ++i)
+      points.push_back(perturb(bestVector_, lo_, hi_, options_.perturbProbability, options_.stepScale, rng_));
+    incumbent_ = bestObjective_;
+    return points;
+  }
+  void tell(const std::vector<std::vector<double>>&, const std::vector<ObjectiveTerms>& results) override {
+    if (std::isfinite(incumbent_) && results[0].total != incumbent_) ++mismatches_;
+  }
+
+ private:
+  double incumbent_ = std::numeric_limits<double>::infinity();
+};
+
+// ---- CMA-ES (Hansen, "The CMA Evolution Strategy: A Tutorial", 2016) ------------------------
+// Works in normalised coordinates u = (x − lo)/(hi − lo) ∈ [0, 1]ⁿ. A sample outside the box is
+// evaluated at its projection onto the box, and ranked with the squared distance to it added,
+// so the distribution is drawn back inside (a common boundary handling).
+class CmaEs : public Optimizer {
+ public:
+  CmaEs(const SearchOptions& o, const gait::GaitParams& start)
+      : Optimizer(o, start), n_(static_cast<int>(lo_.size())), lambda_(std::max(2, o.candidates)) {
+    const int mu = lambda_ / 2;
+    weights_.resize(mu);
+    for (int i = 0; i < mu; ++i) weights_[i] = std::log(mu + 0.5) - std::log(i + 1.0);
+    weights_ /= weights_.sum();
+    muEff_ = 1.0 / weights_.squaredNorm();
+    const double n = n_;
+    cSigma_ = (muEff_ + 2) / (n + muEff_ + 5);
+    dSigma_ = 1 + 2 * std::max(0.0, std::sqrt((muEff_ - 1) / (n + 1)) - 1) + cSigma_;
+    cc_ = (4 + muEff_ / n) / (n + 4 + 2 * muEff_ / n);
+    c1_ = 2 / ((n + 1.3) * (n + 1.3) + muEff_);
+    cMu_ = std::min(1 - c1_, 2 * (muEff_ - 2 + 1 / muEff_) / ((n + 2) * (n + 2) + muEff_));
+    chiN_ = std::sqrt(n) * (1 - 1 / (4 * n) + 1 / (21 * n * n));
+    mean_.resize(n_);
+    for (int i = 0; i < n_; ++i) mean_[i] = (bestVector_[i] - lo_[i]) / (hi_[i] - lo_[i]);
+    sigma_ = o.cmaSigma;
+    C_ = Eigen::MatrixXd::Identity(n_, n_);
+    B_ = C_;
+    D_ = Eigen::VectorXd::Ones(n_);
+    pSigma_ = pc_ = Eigen::VectorXd::Zero(n_);
+  }
+
+ protected:
+  std::vector<std::vector<double>> propose() override {
+    samples_.assign(lambda_, Eigen::VectorXd(n_));
+    std::vector<std::vector<double>> points(lambda_, std::vector<double>(n_));
+    for (int k = 0; k < lambda_; ++k) {
+      Eigen::VectorXd z(n_);
+      for (int i = 0; i < n_; ++i) z[i] = rng_.normal();
+      samples_[k] = mean_ + sigma_ * (B_ * D_.asDiagonal() * z);
+      for (int i = 0; i < n_; ++i)
+        points[k][i] = lo_[i] + std::clamp(samples_[k][i], 0.0, 1.0) * (hi_[i] - lo_[i]);
+    }
+    return points;
+  }
+
+  void tell(const std::vector<std::vector<double>>&, const std::vector<ObjectiveTerms>& results) override {
+    std::vector<double> f(lambda_);
+    for (int k = 0; k < lambda_; ++k) {
+      const Eigen::VectorXd inside = samples_[k].cwiseMax(0.0).cwiseMin(1.0);
+      f[k] = results[k].total + (samples_[k] - inside).squaredNorm();
+    }
+    std::vector<int> order(lambda_);
+    for (int k = 0; k < lambda_; ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return f[a] < f[b]; });
+
+    const int mu = static_cast<int>(weights_.size());
+    const Eigen::VectorXd old = mean_;
+    mean_.setZero();
+    for (int i = 0; i < mu; ++i) mean_ += weights_[i] * samples_[order[i]];
+    const Eigen::VectorXd step = (mean_ - old) / sigma_;
+
+    // C^(-1/2) = B D^(-1) Bᵀ
+    const Eigen::VectorXd whitened = B_ * (D_.cwiseInverse().asDiagonal() * (B_.transpose() * step));
+    pSigma_ = (1 - cSigma_) * pSigma_ + std::sqrt(cSigma_ * (2 - cSigma_) * muEff_) * whitened;
+    const double gens = generation_;
+    const bool hSigma = pSigma_.norm() / std::sqrt(1 - std::pow(1 - cSigma_, 2 * gens)) <
+                        (1.4 + 2 / (n_ + 1.0)) * chiN_;
+    pc_ = (1 - cc_) * pc_ + (hSigma ? std::sqrt(cc_ * (2 - cc_) * muEff_) : 0.0) * step;
+
+    Eigen::MatrixXd rankMu = Eigen::MatrixXd::Zero(n_, n_);
+    for (int i = 0; i < mu; ++i) {
+      const Eigen::VectorXd y = (samples_[order[i]] - old) / sigma_;
+      rankMu += weights_[i] * y * y.transpose();
+    }
+    C_ = (1 - c1_ - cMu_) * C_ +
+         c1_ * (pc_ * pc_.transpose() + (hSigma ? 0.0 : cc_ * (2 - cc_)) * C_) + cMu_ * rankMu;
+    sigma_ *= std::exp((cSigma_ / dSigma_) * (pSigma_.norm() / chiN_ - 1));
+    sigma_ = std::min(sigma_, 1.0);  // a step wider than the whole box means nothing
+
+    // C = B D² Bᵀ; symmetrise first so rounding cannot make the solver see an asymmetric C.
+    C_ = 0.5 * (C_ + C_.transpose());
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(C_);
+    B_ = eig.eigenvectors();
+    D_ = eig.eigenvalues().cwiseMax(1e-20).cwiseSqrt();
+  }
+
+ private:
+  int n_, lambda_;
+  Eigen::VectorXd weights_;
+  double muEff_, cSigma_, dSigma_, cc_, c1_, cMu_, chiN_;
+  Eigen::VectorXd mean_, pSigma_, pc_, D_;
+  Eigen::MatrixXd C_, B_;
+  double sigma_;
+  std::vector<Eigen::VectorXd> samples_;
+};
+
+}  // namespace
+
+std::unique_ptr<Optimizer> Optimizer::create(const SearchOptions& options, const gait::GaitParams& start) {
+  if (options.method == Method::CmaEs) return std::unique_ptr<Optimizer>(new CmaEs(options, start));
+  return std::unique_ptr<Optimizer>(new Greedy(options, start));
+}
+
+}  // namespace gaitlab::optimize

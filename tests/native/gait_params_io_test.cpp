@@ -1,0 +1,170 @@
+// Gait files (gait/params_io.h): the presets load, writing then reading gives back the same
+// bits, and every kind of bad file is refused with the field named and the target untouched.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <random>
+#include <sstream>
+
+#include "gait/defaults.h"
+#include "gait/params_io.h"
+
+using namespace gaitlab::gait;
+using nlohmann::json;
+
+namespace {
+
+bool sameBits(const GaitParams& a, const GaitParams& b) { return std::memcmp(&a, &b, sizeof(a)) == 0; }
+
+std::string readSourceFile(const std::string& relative) {
+  std::ifstream in(std::string(GAITLAB_SOURCE_DIR) + "/" + relative, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(GaitFile, ShippedPresetsLoadAndAreWhatTheBinaryEmbeds) {
+  for (Character c : {Character::Biped, Character::Quadruped}) {
+    const std::string path = std::string("public/presets/") + characterName(c) + ".json";
+    const std::string text = readSourceFile(path);
+    ASSERT_FALSE(text.empty()) << path;
+    EXPECT_EQ(text, presetText(c)) << path << " changed since the build embedded it";
+    GaitFile file;
+    const auto error = parseGaitFile(text, c, &file);
+    ASSERT_FALSE(error) << path << ": " << error->describe();
+    EXPECT_EQ(file.character, c);
+    EXPECT_TRUE(sameBits(file.params, defaultParams(c)));
+  }
+}
+
+TEST(GaitFile, RoundTripsBitExactly) {
+  // Random values within the bounds, plus awkward ones: non-terminating binary fractions,
+  // the smallest subnormal, negative zero.
+  std::mt19937_64 rng(42);
+  for (Character c : {Character::Biped, Character::Quadruped}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      GaitParams p = defaultParams(c);
+      int i = 0;
+      forEachParam(c, p, [&](const ParamField& f) {
+        for (int k = 0; k < f.spec.knots; ++k, ++i) {
+          const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+          double v = f.spec.min + u * (f.spec.max - f.spec.min);
+          if (i % 7 == 3 && f.spec.min <= 0 && f.spec.max >= 0) v = trial % 2 ? -0.0 : 4.9e-324;
+          if (i % 11 == 5) v = f.spec.min + (f.spec.max - f.spec.min) / 3.0;
+          f.values[k] = v;
+        }
+      });
+      GaitFile back;
+      const auto error = parseGaitFile(gaitFileJson(c, p, {{"seed", trial}}), c, &back);
+      ASSERT_FALSE(error) << error->describe();
+      EXPECT_TRUE(sameBits(back.params, p)) << characterName(c) << " trial " << trial;
+      EXPECT_EQ(back.meta["seed"], trial);
+      // Compact output reads back the same.
+      GaitFile compact;
+      ASSERT_FALSE(parseGaitFile(gaitFileJson(c, p, {}, -1), c, &compact));
+      EXPECT_TRUE(sameBits(compact.params, p));
+    }
+  }
+}
+
+TEST(GaitFile, WithoutAnExpectedCharacterTheFileSaysWhichItIs) {
+  GaitFile file;
+  ASSERT_FALSE(parseGaitFile(presetText(Character::Quadruped), std::nullopt, &file));
+  EXPECT_EQ(file.character, Character::Quadruped);
+}
+
+TEST(GaitFile, UnreadableFileIsAnError) {
+  GaitFile file;
+  const auto error = loadGaitFile("/nonexistent/gait.json", std::nullopt, &file);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->message, "cannot be read");
+}
+
+// Each bad file: how to break the biped preset, the field the error must name, and a piece of
+// the message.
+struct BadFile {
+  const char* what;
+  std::function<std::string(json)> make;
+  std::string field;
+  std::string message;
+};
+
+TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
+  const json preset = json::parse(presetText(Character::Biped), nullptr, false);
+  ASSERT_FALSE(preset.is_discarded());
+  const auto with = [](std::function<void(json&)> change) {
+    return [change](json j) {
+      change(j);
+      return j.dump();
+    };
+  };
+  const std::vector<BadFile> cases = {
+      {"truncated JSON", [](json j) { const std::string s = j.dump(); return s.substr(0, s.size() / 2); },
+       "", "not valid JSON"},
+      {"not an object", [](json) { return std::string("[1, 2]"); }, "", "expected a JSON object"},
+      {"unknown top-level field", with([](json& j) { j["colour"] = "red"; }), "colour", "unknown field"},
+      {"wrong format", with([](json& j) { j["format"] = "gaitlab-scene"; }), "format", "expected \"gaitlab-gait\""},
+      {"missing format", with([](json& j) { j.erase("format"); }), "format", "missing"},
+      {"wrong version", with([](json& j) { j["version"] = 2; }), "version", "expected 1"},
+      {"version as a string", with([](json& j) { j["version"] = "1"; }), "version", "expected 1"},
+      {"unknown character", with([](json& j) { j["character"] = "horse"; }), "character", "\"horse\""},
+      {"other character", with([](json& j) { j["character"] = "quadruped"; }), "character",
+       "for a quadruped, not a biped"},
+      {"params missing", with([](json& j) { j.erase("params"); }), "params", "missing"},
+      {"params not an object", with([](json& j) { j["params"] = json::array(); }), "params", "expected an object"},
+      {"meta not an object", with([](json& j) { j["meta"] = "hello"; }), "meta", "expected an object"},
+      {"missing parameter", with([](json& j) { j["params"].erase("legFrame.pitch"); }), "legFrame.pitch", "missing"},
+      {"unknown parameter", with([](json& j) { j["params"]["legFrame.wobble"] = 1; }), "legFrame.wobble",
+       "unknown parameter"},
+      {"quadruped parameter in a biped file", with([](json& j) { j["params"]["gains.spineKp"] = 1; }),
+       "gains.spineKp", "unknown parameter"},
+      {"number as a string", with([](json& j) { j["params"]["period"] = "1.0"; }), "period",
+       "expected a number, got a string"},
+      {"null", with([](json& j) { j["params"]["period"] = nullptr; }), "period", "expected a number, got null"},
+      {"scalar given knots", with([](json& j) { j["params"]["period"] = {1, 1, 1, 1}; }), "period",
+       "expected a number, got an array of 4"},
+      {"graph given a scalar", with([](json& j) { j["params"]["legFrame.pitch"] = 0.1; }), "legFrame.pitch",
+       "expected an array of 4 numbers"},
+      {"three knots", with([](json& j) { j["params"]["legFrame.pitch"] = {0, 0, 0}; }), "legFrame.pitch",
+       "got an array of 3"},
+      {"knot not a number", with([](json& j) { j["params"]["legFrame.stepHeight"][1] = true; }),
+       "legFrame.stepHeight[1]", "expected a number, got a boolean"},
+      {"knot out of bounds", with([](json& j) { j["params"]["legFrame.stepHeight"][2] = 5.0; }),
+       "legFrame.stepHeight[2]", "5.0 is outside [0.0, 0.25]"},
+      {"scalar below its bound", with([](json& j) { j["params"]["period"] = 0.01; }), "period",
+       "0.01 is outside [0.3, 3.0]"},
+      {"the last field out of bounds", with([](json& j) { j["params"]["right.strikeTime"] = -1; }),
+       "right.strikeTime", "outside"},
+      // JSON has no NaN or infinity; a number too large for a double is refused by the parser
+      // itself, whose message quotes it.
+      {"overflowing number", [](json j) {
+         std::string s = j.dump();
+         const std::string key = "\"period\":1.0";
+         s.replace(s.find(key), key.size(), "\"period\":1e999");
+         return s;
+       },
+       "", "number overflow parsing '1e999'"},
+  };
+  for (const BadFile& bad : cases) {
+    SCOPED_TRACE(bad.what);
+    // The target holds values of its own that a half-load would overwrite.
+    GaitFile target;
+    target.params = defaultParams(Character::Biped);
+    target.params.period = 2.5;
+    target.params.legFrames[0].pitch = MotionGraph::of(0.1, 0.2, 0.3, 0.4);
+    target.params.legs[1].strikeTime = 0.25;
+    const GaitFile before = target;
+    const auto error = parseGaitFile(bad.make(preset), Character::Biped, &target);
+    ASSERT_TRUE(error) << "accepted";
+    EXPECT_EQ(error->field, bad.field) << error->describe();
+    EXPECT_NE(error->message.find(bad.message), std::string::npos) << error->describe();
+    EXPECT_TRUE(sameBits(target.params, before.params)) << "half-loaded";
+    EXPECT_EQ(target.character, before.character);
+  }
+}

@@ -1,0 +1,43 @@
+// The C ABI's generation-by-generation optimiser (gl_opt_*), as the browser's optimize panel
+// would drive it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "api/c_api.h"
+#include "gait/params_io.h"
+
+using nlohmann::json;
+
+TEST(OptimizeCApi, StepsAGenerationAtATimeAndReturnsTheBestAsAGaitFile) {
+  void* opt = gl_opt_create(GL_KIND_QUADRUPED, 0, 3, 7, 2, nullptr,
+                            R"({"seconds": 1.0, "warmup": 0.5, "speeds": [0.5, 1.0]})");
+  ASSERT_NE(opt, nullptr) << gl_last_error();
+  EXPECT_EQ(gl_opt_generation(opt), 0);
+  const double first = gl_opt_step(opt);
+  const double second = gl_opt_step(opt);
+  EXPECT_TRUE(std::isfinite(first));
+  EXPECT_LE(second, first);
+  EXPECT_EQ(gl_opt_generation(opt), 2);
+  EXPECT_EQ(gl_opt_evaluations(opt), 6);
+  const std::string text = gl_opt_best_json(opt);
+  gaitlab::gait::GaitFile file;
+  const auto error = gaitlab::gait::parseGaitFile(text, gaitlab::gait::Character::Quadruped, &file);
+  ASSERT_FALSE(error) << error->describe();
+  EXPECT_EQ(file.meta["objective"], second);
+  EXPECT_EQ(file.meta["generations"], 2);
+  gl_opt_destroy(opt);
+}
+
+TEST(OptimizeCApi, RefusesBadInputWithAMessage) {
+  EXPECT_EQ(gl_opt_create(GL_KIND_BOX, 0, 3, 1, 1, nullptr, nullptr), nullptr);
+  EXPECT_NE(std::string(gl_last_error()).find("not a character"), std::string::npos);
+  EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, "{}", nullptr), nullptr);
+  EXPECT_NE(std::string(gl_last_error()).find("format"), std::string::npos);
+  EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, R"({"wr": -2})"), nullptr);
+  EXPECT_NE(std::string(gl_last_error()).find("wr: "), std::string::npos);
+  EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, R"({"speeds": []})"), nullptr);
+  EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, "[1]"), nullptr);
+}

@@ -1,0 +1,348 @@
+// The optimiser (optimize/): its random numbers, §3.3's perturbation, each term of the objective
+// (eq. 3.10) on synthetic trajectories with known answers, the determinism of a search, and a
+// short search that improves a detuned gait.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "gait/defaults.h"
+#include "gait/heading.h"
+#include "gait/schema.h"
+#include "optimize/objective.h"
+#include "optimize/optimizer.h"
+#include "optimize/random.h"
+
+using namespace gaitlab;
+using namespace gaitlab::optimize;
+
+// ---- random numbers -------------------------------------------------------------------------
+
+TEST(OptimizeRandom, EngineIsTheStandardMersenneTwisterAndTheMappingIsOurs) {
+  // C++ [rand.predef]: the 10000th output of a default-constructed mt19937_64.
+  Random r(5489u);
+  uint64_t v = 0;
+  for (int i = 0; i < 10000; ++i) v = r.next();
+  EXPECT_EQ(v, 9981545732273789042ull);
+  Random a(7), b(7);
+  for (int i = 0; i < 1000; ++i) {
+    const uint64_t raw = a.next();
+    const double u = b.uniform();
+    EXPECT_EQ(u, static_cast<double>(raw >> 11) * 0x1.0p-53);
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+  }
+}
+
+TEST(OptimizeRandom, NormalHasZeroMeanAndUnitVariance) {
+  Random r(3);
+  const int n = 200000;
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const double x = r.normal();
+    sum += x;
+    sum2 += x * x;
+  }
+  EXPECT_NEAR(sum / n, 0.0, 0.01);
+  EXPECT_NEAR(sum2 / n, 1.0, 0.01);
+}
+
+// ---- perturbation (§3.3) ---------------------------------------------------------------------
+
+TEST(OptimizePerturb, ChangesAFifthOfTheCoordinatesByUpToATenthOfTheirRange) {
+  const int dims = 100, trials = 1000;
+  std::vector<double> lo(dims), hi(dims), x(dims);
+  for (int i = 0; i < dims; ++i) {
+    lo[i] = -1.0 - i;        // ranges differ per coordinate
+    hi[i] = 3.0 + 2.0 * i;
+    x[i] = 0.5 * (lo[i] + hi[i]);
+  }
+  Random rng(11);
+  long changed = 0, small = 0;
+  double meanStep = 0;
+  for (int t = 0; t < trials; ++t) {
+    const std::vector<double> y = perturb(x, lo, hi, 0.2, 0.1, rng);
+    for (int i = 0; i < dims; ++i) {
+      if (y[i] == x[i]) continue;
+      ++changed;
+      const double step = (y[i] - x[i]) / (hi[i] - lo[i]);  // in units of the range
+      ASSERT_LE(std::abs(step), 0.1);
+      meanStep += step;
+      if (std::abs(step) < 0.05) ++small;
+    }
+  }
+  const double n = static_cast<double>(dims) * trials;
+  // Binomial(100000, 0.2): standard deviation 0.0013 of the fraction.
+  EXPECT_NEAR(changed / n, 0.2, 0.006);
+  // Uniform on (−0.1, 0.1): half the steps are under 0.05, and they average to zero.
+  EXPECT_NEAR(static_cast<double>(small) / changed, 0.5, 0.015);
+  EXPECT_NEAR(meanStep / changed, 0.0, 0.002);
+}
+
+TEST(OptimizePerturb, ClampsToTheBounds) {
+  const int dims = 50;
+  std::vector<double> lo(dims, 0.0), hi(dims, 1.0), top(dims, 1.0), bottom(dims, 0.0);
+  Random rng(5);
+  long atBound = 0, changed = 0;
+  for (int t = 0; t < 2000; ++t) {
+    for (const auto* x : {&top, &bottom}) {
+      const std::vector<double> y = perturb(*x, lo, hi, 0.2, 0.1, rng);
+      for (int i = 0; i < dims; ++i) {
+        ASSERT_GE(y[i], 0.0);
+        ASSERT_LE(y[i], 1.0);
+        if (y[i] != (*x)[i]) ++changed;
+      }
+      for (int i = 0; i < dims; ++i) atBound += y[i] == (*x)[i];
+    }
+  }
+  // From a bound, the steps that point outwards (half of those drawn) are clamped back onto it:
+  // about 10 % of coordinates move, 90 % stay.
+  const double n = 2.0 * 2000 * dims;
+  EXPECT_NEAR(changed / n, 0.1, 0.006);
+  EXPECT_NEAR(atBound / n, 0.9, 0.006);
+}
+
+// ---- objective terms (eq. 3.10) on synthetic trajectories -----------------------------------
+
+namespace {
+
+constexpr double kDt = 1.0 / 120.0;
+constexpr double kStanding = 1.0;
+
+// Records `seconds` of a leg frame whose state at time t is given by `at`.
+ObjectiveTerms record(const ObjectiveSettings& s, double goalSpeed,
+                      const std::function<LegFrameSample(double)>& at, double seconds,
+                      bool fell = false) {
+  ObjectiveRecorder r(s, goalSpeed, 0.0, kDt);
+  const int steps = static_cast<int>(std::lround(seconds / kDt));
+  for (int k = 1; k <= steps; ++k) {
+    const LegFrameSample f = at(k * kDt);
+    r.add(k * kDt, &f, 1);
+  }
+  return r.finish(fell, steps * kDt);
+}
+
+LegFrameSample upright(const Eigen::Vector3d& p, const Eigen::Vector3d& v, double height = kStanding) {
+  return {p, v, Eigen::Quaterniond::Identity(), height, kStanding};
+}
+
+ObjectiveSettings settings() {
+  ObjectiveSettings s;
+  s.seconds = 3.0;
+  s.warmup = 1.0;
+  return s;
+}
+
+}  // namespace
+
+TEST(OptimizeObjective, APerfectWalkScoresZero) {
+  const auto t = record(settings(), 1.2, [](double t) {
+    return upright({0, kStanding, 1.2 * t}, {0, 0, 1.2});
+  }, 3.0);
+  EXPECT_NEAR(t.fd, 0.0, 1e-12);
+  EXPECT_NEAR(t.fv, 0.0, 1e-12);
+  EXPECT_NEAR(t.fa, 0.0, 1e-12);
+  EXPECT_NEAR(t.fr, 0.0, 1e-12);
+  EXPECT_EQ(t.fall, 0.0);
+  EXPECT_NEAR(t.total, 0.0, 1e-12);
+}
+
+TEST(OptimizeObjective, StandingStillMissesTheGoalByTheWholeDistance) {
+  // Goal 1 m/s, measured for 2 s after the warm-up: f_v = 1 (m/s)², and the travel deviation is
+  // (0 − 2 m)/2 m = −1, so f_d = 1.
+  const auto t = record(settings(), 1.0, [](double) { return upright({0, kStanding, 0}, {0, 0, 0}); }, 3.0);
+  EXPECT_NEAR(t.fv, 1.0, 1e-12);
+  EXPECT_NEAR(t.fd, 1.0, 1e-9);
+  EXPECT_NEAR(t.total, 2.0, 1e-9);
+}
+
+TEST(OptimizeObjective, SidewaysDriftCountsAsVelocityDeviation) {
+  const auto t = record(settings(), 1.0, [](double t) {
+    return upright({0.5 * t, kStanding, t}, {0.5, 0, 1.0});
+  }, 3.0);
+  EXPECT_NEAR(t.fv, 0.25, 1e-12);
+  EXPECT_NEAR(t.fd, 0.0, 1e-9);  // forward travel is exact
+}
+
+TEST(OptimizeObjective, VelocityIsMeasuredInTheTurningGoalHeadingFrame) {
+  // Goal: 1 m/s while turning at 0.5 rad/s. A walker whose velocity follows the goal heading
+  // exactly has no velocity or travel deviation, and no rotation deviation if it faces it.
+  ObjectiveSettings s = settings();
+  s.turnRate = 0.5;
+  ObjectiveRecorder r(s, 1.0, 0.0, kDt);
+  for (int k = 1; k <= 360; ++k) {
+    const double t = k * kDt, heading = 0.5 * t;
+    const LegFrameSample f{{0, kStanding, 0}, gait::headingForward(heading), gait::headingQuat(heading),
+                           kStanding, kStanding};
+    r.add(t, &f, 1);
+  }
+  const ObjectiveTerms t = r.finish(false, 3.0);
+  EXPECT_NEAR(t.fv, 0.0, 1e-12);
+  EXPECT_NEAR(t.fd, 0.0, 1e-9);
+  EXPECT_NEAR(t.fr, 0.0, 1e-12);
+  // The acceleration of that walk is centripetal: v²/r = v·ω = 0.5 m/s².
+  EXPECT_NEAR(t.fa, 0.25 / (9.81 * 9.81), 1e-6);
+}
+
+TEST(OptimizeObjective, PostureDeviationIsRelativeHeightSquared) {
+  const auto t = record(settings(), 1.0, [](double t) {
+    return upright({0, 0.9, t}, {0, 0, 1.0}, 0.9);
+  }, 3.0);
+  EXPECT_NEAR(t.fd, 0.01, 1e-9);
+}
+
+TEST(OptimizeObjective, RotationDeviationIsTheSquaredAngleFromTheGoalFrame) {
+  const Eigen::Quaterniond pitched(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX()));
+  const Eigen::Quaterniond yawed = gait::headingQuat(-0.3);
+  for (const auto& [q, angle] : {std::pair{pitched, 0.2}, std::pair{yawed, 0.3}}) {
+    const auto t = record(settings(), 1.0, [&, q = q](double t) {
+      LegFrameSample f = upright({0, kStanding, t}, {0, 0, 1.0});
+      f.orientation = q;
+      return f;
+    }, 3.0);
+    EXPECT_NEAR(t.fr, angle * angle, 1e-12);
+  }
+}
+
+TEST(OptimizeObjective, AccelerationIsInUnitsOfGravitySquared) {
+  // Constant forward acceleration of 0.1 g: f_a = 0.01.
+  const double a = 0.981;
+  const auto t = record(settings(), 1.0, [&](double t) {
+    return upright({0, kStanding, 0.5 * a * t * t}, {0, 0, a * t});
+  }, 3.0);
+  EXPECT_NEAR(t.fa, 0.01, 1e-9);
+}
+
+TEST(OptimizeObjective, AFallDominatesAndAnEarlierFallScoresWorse) {
+  ObjectiveSettings s = settings();
+  const auto still = [](double) { return upright({0, kStanding, 0}, {0, 0, 0}); };
+  const auto late = record(s, 1.0, still, 2.25, true);   // fell with a quarter left
+  const auto early = record(s, 1.0, still, 0.75, true);  // three quarters left
+  EXPECT_NEAR(late.fall, 100.0 * 1.25, 1e-9);
+  EXPECT_NEAR(early.fall, 100.0 * 1.75, 1e-9);
+  EXPECT_GT(early.total, late.total);
+  EXPECT_GT(late.total, record(s, 1.0, still, 3.0).total);  // standing still beats falling
+}
+
+TEST(OptimizeObjective, WeightsScaleTheirTerms) {
+  ObjectiveSettings s = settings();
+  s.wd = 2;
+  s.wv = 3;
+  s.wa = 5;
+  s.wr = 7;
+  const auto t = record(s, 1.0, [](double t) {
+    LegFrameSample f = upright({0.3 * t, 0.95, 0}, {0.3, 0, 0.2 * t}, 0.95);
+    f.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()));
+    return f;
+  }, 3.0);
+  EXPECT_GT(t.fd * t.fv * t.fa * t.fr, 0.0);
+  EXPECT_NEAR(t.total, 2 * t.fd + 3 * t.fv + 5 * t.fa + 7 * t.fr, 1e-12);
+}
+
+TEST(OptimizeObjective, SettingsAreCheckedAgainstTheirBounds) {
+  ObjectiveSettings s;
+  EXPECT_EQ(setSetting(s, "wr", 4.0), "");
+  EXPECT_EQ(s.wr, 4.0);
+  EXPECT_NE(setSetting(s, "wr", -1.0).find("outside"), std::string::npos);
+  EXPECT_NE(setSetting(s, "wobble", 1.0).find("unknown"), std::string::npos);
+  EXPECT_EQ(setSetting(s, "starts", 3.0), "");
+  EXPECT_EQ(s.starts, 3);
+}
+
+// ---- searches ----------------------------------------------------------------------------------
+
+namespace {
+
+SearchOptions quickSearch(Method method, int threads) {
+  SearchOptions o;
+  o.character = gait::Character::Biped;
+  o.method = method;
+  o.candidates = 4;
+  o.seed = 99;
+  o.threads = threads;
+  o.objective.seconds = 1.5;
+  o.objective.warmup = 0.5;
+  return o;
+}
+
+struct Outcome {
+  gait::GaitParams best;
+  double objective;
+  int mismatches;
+};
+
+Outcome search(const SearchOptions& o, int generations) {
+  auto opt = Optimizer::create(o, gait::defaultParams(o.character));
+  for (int g = 0; g < generations; ++g) opt->step();
+  EXPECT_EQ(opt->evaluations(), generations * o.candidates);
+  return {opt->best(), opt->bestObjective(), opt->determinismMismatches()};
+}
+
+}  // namespace
+
+TEST(OptimizeSearch, TheSameSeedGivesTheSameSearchBitForBitWhateverTheThreadCount) {
+  for (Method m : {Method::Greedy, Method::CmaEs}) {
+    SCOPED_TRACE(methodName(m));
+    const Outcome a = search(quickSearch(m, 1), 3);
+    const Outcome b = search(quickSearch(m, 1), 3);
+    const Outcome c = search(quickSearch(m, 2), 3);
+    EXPECT_EQ(std::memcmp(&a.best, &b.best, sizeof(a.best)), 0);
+    EXPECT_EQ(std::memcmp(&a.best, &c.best, sizeof(a.best)), 0);
+    EXPECT_EQ(a.objective, b.objective);
+    EXPECT_EQ(a.objective, c.objective);
+    EXPECT_EQ(a.mismatches, 0);  // the re-evaluated incumbent scored the same every time
+  }
+  // A different seed draws different candidates.
+  SearchOptions other = quickSearch(Method::Greedy, 1);
+  other.seed = 100;
+  auto a = Optimizer::create(quickSearch(Method::Greedy, 1), gait::defaultParams(gait::Character::Biped));
+  auto b = Optimizer::create(other, gait::defaultParams(gait::Character::Biped));
+  for (int g = 0; g < 4; ++g) {
+    a->step();
+    b->step();
+  }
+  EXPECT_NE(a->bestObjective(), b->bestObjective());
+}
+
+TEST(OptimizeSearch, GreedyKeepsTheBestAndNeverGetsWorse) {
+  auto opt = Optimizer::create(quickSearch(Method::Greedy, 1), gait::defaultParams(gait::Character::Biped));
+  double last = opt->step().bestObjective;
+  for (int g = 0; g < 4; ++g) {
+    const Generation gen = opt->step();
+    EXPECT_LE(gen.bestObjective, last);
+    EXPECT_EQ(gen.improved, gen.bestObjective < last);
+    last = gen.bestObjective;
+  }
+  // The best parameters score what the search says they score.
+  const ObjectiveTerms again = evaluate(gait::Character::Biped, opt->best(), opt->options().objective,
+                                        static_cast<uint32_t>(99 * 2654435761u + 12345u));
+  EXPECT_EQ(again.total, opt->bestObjective());
+}
+
+TEST(OptimizeSearch, AShortSearchImprovesADetunedGait) {
+  // The biped preset with its leg-frame and joint gains detuned and a slow period: it falls
+  // early. Eight greedy generations must find something better.
+  gait::GaitParams start = gait::defaultParams(gait::Character::Biped);
+  start.legFrames[0].orientationKp *= 0.3;
+  start.legFrames[0].heightKp *= 0.5;
+  start.gains.hipKp *= 0.5;
+  start.period = 1.6;
+  SearchOptions o = quickSearch(Method::Greedy, 2);
+  o.candidates = 6;
+  o.objective.seconds = 3.0;
+  o.objective.warmup = 1.0;
+  auto opt = Optimizer::create(o, start);
+  const Generation first = opt->step();
+  ASSERT_TRUE(first.bestTerms.fell) << "the detuned start is meant to fall";
+  for (int g = 1; g < 8; ++g) opt->step();
+  EXPECT_LT(opt->bestObjective(), first.bestObjective);
+  EXPECT_GT(opt->bestTerms().seconds, first.bestTerms.seconds) << "it stays up longer";
+  // Every parameter of the result is within the schema's bounds.
+  gait::GaitParams best = opt->best();
+  gait::forEachParam(gait::Character::Biped, best, [](const gait::ParamField& f) {
+    for (int k = 0; k < f.spec.knots; ++k) {
+      EXPECT_GE(f.values[k], f.spec.min);
+      EXPECT_LE(f.values[k], f.spec.max);
+    }
+  });
+}

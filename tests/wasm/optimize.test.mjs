@@ -1,0 +1,96 @@
+// `gaitlab optimize` natively and as WebAssembly under Node (bench/wasm.mjs): the same
+// arguments print the same JSON summary shape and write a gait file that loads back (with its
+// provenance in meta); Ctrl-C stops after the current generation and still writes the best.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn, spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { fileURLToPath } from 'node:url';
+import path from 'node:path';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const native = path.join(root, 'build/native/gaitlab');
+const dir = mkdtempSync(path.join(tmpdir(), 'gaitlab-optimize-'));
+
+function run(cmd, args) {
+  const r = spawnSync(cmd, args, { cwd: root, encoding: 'utf8', timeout: 300_000 });
+  return { status: r.status, stdout: r.stdout, stderr: r.stderr };
+}
+
+const summaryKeys = ['best_objective', 'best_terms', 'candidates', 'character', 'determinism_mismatches',
+  'evaluations', 'generations', 'history', 'interrupted', 'method', 'out', 'seconds',
+  'seconds_per_generation', 'seed', 'start_objective', 'threads'];
+
+for (const method of ['greedy', 'cmaes']) {
+  test(`optimize --method ${method}: native and WASM print the same summary and write a loadable gait file`, () => {
+    const summaries = [];
+    for (const [name, cmd, pre] of [['native', native, []], ['wasm', process.execPath, ['bench/wasm.mjs']]]) {
+      const out = path.join(dir, `${method}-${name}.json`);
+      const r = run(cmd, [...pre, 'optimize', '--character', 'quadruped', '--method', method, '--generations', '2',
+        '--candidates', '3', '--seconds', '1', '--seed', '5', '--threads', '2', '--out', out, '--json']);
+      assert.equal(r.status, 0, `${name}: ${r.stderr}`);
+      assert.match(r.stderr, /generation 2\/2 {2}best /, name);
+      const s = JSON.parse(r.stdout);
+      assert.deepEqual(Object.keys(s).sort(), summaryKeys, name);
+      assert.equal(s.method, method);
+      assert.equal(s.evaluations, 6);
+      assert.equal(s.history.length, 2);
+      assert.ok(s.best_objective <= s.start_objective, name);  // the best never gets worse
+      assert.equal(s.determinism_mismatches, 0, name);
+      const file = JSON.parse(readFileSync(out, 'utf8'));
+      assert.equal(file.format, 'gaitlab-gait');
+      assert.equal(file.character, 'quadruped');
+      assert.equal(file.meta.seed, 5);
+      assert.equal(file.meta.objective, s.best_objective);
+      assert.equal(file.meta.evaluations, 6);
+      assert.match(file.meta.command, /^gaitlab optimize --character quadruped/);
+      assert.match(file.meta.date, /^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ$/);
+      // The result is a valid gait file for the CLI.
+      const walk = run(native, ['walk', '--params', out, '--seconds', '0.2', '--json']);
+      assert.equal(walk.status, 0, walk.stderr);
+      summaries.push(s);
+    }
+    assert.deepEqual(Object.keys(summaries[0].best_terms).sort(), Object.keys(summaries[1].best_terms).sort());
+  });
+}
+
+test('optimize refuses bad options', () => {
+  for (const [args, message] of [
+    [['optimize', '--generations', '1'], /--out FILE is required/],
+    [['optimize', '--method', 'annealing', '--out', '/tmp/x.json'], /--method: 'annealing' is not greedy or cmaes/],
+    [['optimize', '--objective', 'wr=-1', '--out', '/tmp/x.json'], /--objective: wr: -1\.0 is outside/],
+    [['optimize', '--objective', 'colour=1', '--out', '/tmp/x.json'], /unknown objective setting 'colour'/],
+    [['optimize', '--speeds', '1,fast', '--out', '/tmp/x.json'], /--speeds: 'fast' is not a speed/],
+    [['optimize', '--candidates', '1', '--out', '/tmp/x.json'], /--candidates: 1 is outside/],
+  ]) {
+    const r = run(native, args);
+    assert.equal(r.status, 2, args.join(' '));
+    assert.match(r.stderr, message);
+    assert.equal(r.stdout, '');
+  }
+});
+
+test('Ctrl-C stops after the current generation and writes the best so far', async () => {
+  const out = path.join(dir, 'interrupted.json');
+  const child = spawn(native, ['optimize', '--generations', '100000', '--candidates', '2', '--seconds', '0.5',
+    '--out', out, '--json'], { cwd: root });
+  let stderr = '';
+  let stdout = '';
+  child.stdout.on('data', (d) => { stdout += d; });
+  const status = await new Promise((resolve) => {
+    child.stderr.on('data', (d) => {
+      stderr += d;
+      if (/generation 2\//.test(stderr) && !child.killed) child.kill('SIGINT');
+    });
+    child.on('exit', (code) => resolve(code));
+  });
+  assert.equal(status, 0, stderr);
+  assert.match(stderr, /interrupted; writing the best so far/);
+  const s = JSON.parse(stdout);
+  assert.equal(s.interrupted, true);
+  assert.ok(s.generations >= 2 && s.generations < 100000);
+  const file = JSON.parse(readFileSync(out, 'utf8'));
+  assert.equal(file.meta.interrupted, true);
+  assert.equal(file.meta.generations, s.generations);
+});

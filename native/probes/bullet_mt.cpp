@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
     scheduler.attach(nullptr);
     gaitlab::sim::Simulation sim(threads, 1, 1);
     scheduler.attach(&sim.pool());
-    sim.crowdScene(legs == 2 ? gaitlab::sim::Kind::Biped : gaitlab::sim::Kind::Quadruped, characters, 4.0);
+    sim.crowdScene(legs == 2 ? gaitlab::sim::Crowd::Bipeds : gaitlab::sim::Crowd::Quadrupeds, characters, 4.0);
     sim.setMode(gaitlab::sim::Mode::Controller);
     for (int s = 0; s < steps; ++s) {
       g_counting = s >= steps / 2;

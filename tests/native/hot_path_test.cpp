@@ -34,6 +34,7 @@ void* operator new(size_t size) {
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, size_t) noexcept { std::free(p); }
 
+using gaitlab::sim::Crowd;
 using gaitlab::sim::Kind;
 using gaitlab::sim::Mode;
 using gaitlab::sim::Simulation;
@@ -42,7 +43,7 @@ TEST(HotPath, StepsAllocateNothingInAnyMode) {
   btAlignedAllocSetCustomAligned(countingAlignedAlloc, countingAlignedFree);
   for (Mode mode : {Mode::Serial, Mode::Controller, Mode::Full}) {
     Simulation sim(2, 3, 3);
-    sim.crowdScene(Kind::Box, 6, 4.0);
+    sim.crowdScene(Crowd::Mixed, 6, 4.0);
     sim.setMode(mode);
     sim.step(240);  // warm-up: the characters settle, Bullet's arrays reach their size
     g_news = 0;

@@ -12,6 +12,7 @@
 #include "sim/simulation.h"
 #include "sim/thread_pool.h"
 
+using gaitlab::sim::Crowd;
 using gaitlab::sim::Kind;
 using gaitlab::sim::Mode;
 using gaitlab::sim::Range;
@@ -64,7 +65,7 @@ TEST(Modes, EveryCharacterIsUpdatedExactlyOncePerStep) {
   for (Mode mode : {Mode::Serial, Mode::Controller, Mode::Full}) {
     for (int threads : {1, 3}) {
       Simulation sim(threads, 5, 4);
-      sim.crowdScene(Kind::Box, 11, 4.0);  // mixed, uneven over 3 threads and 4 shards
+      sim.crowdScene(Crowd::Mixed, 11, 4.0);  // mixed, uneven over 3 threads and 4 shards
       sim.setMode(mode);
       sim.step(7);
       for (int i = 0; i < sim.characterCount(); ++i)
@@ -75,7 +76,7 @@ TEST(Modes, EveryCharacterIsUpdatedExactlyOncePerStep) {
 
 TEST(Modes, CrowdIsOnAGridWellApartInContiguousShards) {
   Simulation sim(1, 1, 3);
-  sim.crowdScene(Kind::Quadruped, 10, 4.0);
+  sim.crowdScene(Crowd::Quadrupeds, 10, 4.0);
   EXPECT_EQ(sim.characterCount(), 10);
   std::set<std::pair<long, long>> cells;
   int lastShard = 0;
@@ -97,7 +98,7 @@ TEST(Modes, SameStateHashForEveryModeAndThreadCount) {
   for (Mode mode : {Mode::Serial, Mode::Controller, Mode::Full}) {
     for (int threads = 1; threads <= 4; ++threads) {
       Simulation sim(threads, 9, 3);
-      sim.crowdScene(Kind::Box, 7, 2.5);
+      sim.crowdScene(Crowd::Mixed, 7, 2.5);
       sim.spawn(Kind::Box, 1.0, 0.5, 0.3);
       sim.spawn(Kind::Box, -2.0, 1.5, 1.1);
       sim.setMode(mode);
@@ -153,7 +154,7 @@ TEST(Modes, AThrownBoxHitsACharacterInAnotherShard) {
   double moved[2];
   for (int withBox = 0; withBox < 2; ++withBox) {
     Simulation sim(2, 4, 3);
-    sim.crowdScene(Kind::Quadruped, 3, 4.0);
+    sim.crowdScene(Crowd::Quadrupeds, 3, 4.0);
     sim.setMode(Mode::Full);
     ASSERT_EQ(sim.shardOf(0), 0);
     ASSERT_EQ(sim.shardOf(2), 2);

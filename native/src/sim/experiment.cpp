@@ -27,8 +27,8 @@ Stat meanSd(const double* x, size_t n, size_t stride) {
   return {mean, std::sqrt(sq / n)};
 }
 
-Kind kindOf(int legs) {
-  return legs == kBiped ? Kind::Biped : legs == kQuadruped ? Kind::Quadruped : Kind::Box;
+Crowd crowdOf(int legs) {
+  return legs == kBiped ? Crowd::Bipeds : legs == kQuadruped ? Crowd::Quadrupeds : Crowd::Mixed;
 }
 
 }  // namespace
@@ -84,7 +84,7 @@ PointResult runPoint(const PointSpec& spec) {
     // restarted" (thesis §4.2). Thread creation and scene building happen here, outside the
     // timed steps.
     auto sim = std::make_unique<Simulation>(spec.threads, spec.seed, r.shards);
-    sim->crowdScene(kindOf(spec.legs), spec.characters, spec.spacing);
+    sim->crowdScene(crowdOf(spec.legs), spec.characters, spec.spacing);
     sim->setMode(spec.mode);
     for (size_t s = 0; s < steps; ++s) {
       sim->step(1);

@@ -192,12 +192,15 @@ void Simulation::demoScene(int characters) {
   publish();
 }
 
-void Simulation::crowdScene(Kind kind, int characters, double spacing) {
+void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
   const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(characters))));
   for (int i = 0; i < characters; ++i) {
     const double x = (i % columns - (columns - 1) / 2.0) * spacing;
     const double z = (i / columns - (columns - 1) / 2.0) * spacing;
-    const Kind k = kind == Kind::Box ? (i % 2 == 0 ? Kind::Biped : Kind::Quadruped) : kind;
+    const Kind k = crowd == Crowd::Bipeds       ? Kind::Biped
+                   : crowd == Crowd::Quadrupeds ? Kind::Quadruped
+                   : i % 2 == 0                 ? Kind::Biped
+                                                : Kind::Quadruped;
     // Contiguous chunks of the grid per shard, split like the thesis's thread chunks (§4.3).
     int shard = 0;
     while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;

@@ -26,6 +26,9 @@ namespace gaitlab::sim {
 
 enum class Kind { Biped = 0, Quadruped = 1, Box = 2 };
 
+// Who makes up a benchmark crowd (crowdScene): thesis §4.1 measured bipeds and quadrupeds apart.
+enum class Crowd { Bipeds, Quadrupeds, Mixed };
+
 // How a fixed step uses the thread pool (chosen at run time; docs/parallel.md):
 //   Serial      everything on the calling thread;
 //   Controller  the thesis's mode (§3.1, §4.1): the controller loop is a parallel-for over the
@@ -43,6 +46,7 @@ bool parseMode(const std::string& name, Mode* out);
 struct StepTiming {
   double controller = 0, physics = 0, step = 0;
 };
+
 class Simulation {
  public:
   static constexpr int kRenderCapacity = 16384;  // bodies
@@ -58,11 +62,11 @@ class Simulation {
   int spawn(Kind kind, double x, double z, double heading);
   // `characters` figures on a grid, alternating biped and quadruped, plus a few boxes.
   void demoScene(int characters);
-  // The thesis experiment's crowd (§4.1, Figures 4.5, 4.6): `characters` of `kind` (Biped,
-  // Quadruped, or Box meaning mixed: alternating) on a square grid `spacing` metres apart,
-  // centred on the origin, all facing +z; no props. Shard s gets the s-th contiguous chunk of
-  // the grid (rows), so neighbours share a world.
-  void crowdScene(Kind kind, int characters, double spacing);
+  // The thesis experiment's crowd (§4.1, Figures 4.5, 4.6): `characters` bipeds, quadrupeds or
+  // both (alternating) on a square grid `spacing` metres apart, centred on the origin, all facing
+  // +z; no props. Shard s gets the s-th contiguous chunk of the grid (rows), so neighbours share
+  // a world.
+  void crowdScene(Crowd crowd, int characters, double spacing);
 
   void setMode(Mode mode) { mode_ = mode; }
   Mode mode() const { return mode_; }

@@ -31,6 +31,7 @@ Range ThreadPool::chunk(int n, int threads, int t) {
 
 ThreadPool::ThreadPool(int threads) {
   if (threads < 1) threads = 1;
+  claims_ = std::make_unique<Claim[]>(threads);
   workers_.reserve(threads - 1);
   for (int t = 1; t < threads; ++t) workers_.emplace_back([this, t] { workerLoop(t); });
 }
@@ -48,15 +49,26 @@ void ThreadPool::run(int n, Task task, void* ctx) {
   task_ = task;
   ctx_ = ctx;
   n_ = n;
-  pending_.store(static_cast<int>(workers_.size()));
-  generation_.fetch_add(1);  // seq_cst: publishes task_, ctx_, n_ to the workers
+  pending_.store(size());
+  const uint64_t generation = generation_.fetch_add(1) + 1;  // seq_cst: publishes the loop
   if (sleeping_.load() > 0) {
     std::lock_guard<std::mutex> lock(mutex_);
     wake_.notify_all();
   }
-  const Range r = chunk(n, size(), 0);
-  if (r.begin < r.end) task(ctx, r.begin, r.end, 0);
+  // Chunk 0, then any chunk whose thread has not claimed it yet (late workers, see the header).
+  for (int c = 0; c < size(); ++c) runChunk(c, generation);
   while (pending_.load(std::memory_order_acquire) != 0) relax();
+}
+
+void ThreadPool::runChunk(int c, uint64_t generation) {
+  // Every chunk of the previous loop was claimed before that loop returned, so an unclaimed
+  // chunk holds generation - 1. A thread that read an old generation fails here and touches
+  // nothing of the current loop.
+  uint64_t expected = generation - 1;
+  if (!claims_[c].generation.compare_exchange_strong(expected, generation)) return;
+  const Range r = chunk(n_, size(), c);
+  if (r.begin < r.end) task_(ctx_, r.begin, r.end, c);
+  pending_.fetch_sub(1, std::memory_order_release);
 }
 
 void ThreadPool::workerLoop(int thread) {
@@ -77,9 +89,7 @@ void ThreadPool::workerLoop(int thread) {
     }
     if (stop_.load()) return;
     seen = generation_.load();
-    const Range r = chunk(n_, size(), thread);
-    if (r.begin < r.end) task_(ctx_, r.begin, r.end, thread);
-    pending_.fetch_sub(1, std::memory_order_release);
+    runChunk(thread, seen);
   }
 }
 

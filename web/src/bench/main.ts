@@ -138,6 +138,8 @@ interface Overlay { name: string; doc: BenchDocument }
 let current: BenchDocument | null = null;
 const overlays: Overlay[] = [];
 const plots = new Map<string, uPlot>();
+/** One element per chart, kept across redraws so that charts keep their places. */
+const holders = new Map<string, HTMLDivElement>();
 
 /** A chart of `field` against crowd size for one leg count: every series with its ±sd band. */
 function chartData(legs: Point['legs'], fieldName: TimeField) {
@@ -180,25 +182,31 @@ function drawCharts(): void {
     if (!wanted.some(([k]) => k === key)) {
       plot.destroy();
       plots.delete(key);
+      holders.get(key)?.remove();
+      holders.delete(key);
     }
   }
   for (const [key, legs, fieldName, title] of wanted) {
     const { series, data, bands } = chartData(legs, fieldName);
     plots.get(key)?.destroy();
-    const holder = el('div');
+    let holder = holders.get(key);
+    if (!holder) {
+      holder = el('div');
+      holders.set(key, holder);
+      charts.append(holder);
+    }
     const opts: uPlot.Options = {
       title, width: 540, height: 300, series, bands,
       scales: { x: { time: false } },
       axes: [{ label: 'characters' }, { label: 'ms' }],
       legend: { live: false },
     };
-    // Hide the ±sd helper series from the legend: they only bound the bands.
     const plot = new uPlot(opts, data as uPlot.AlignedData, holder);
-    plot.root.querySelectorAll('.u-legend .u-series').forEach((row, i) => {
-      if (i > 0 && (i - 1) % 3 !== 0) (row as HTMLElement).style.display = 'none';
+    // Hide the ±sd helper series from the legend: they only bound the bands.
+    plot.root.querySelectorAll<HTMLElement>('.u-legend .u-series').forEach((row) => {
+      if (/^[+−]sd$/.test(row.textContent?.trim() ?? '')) row.style.display = 'none';
     });
     plots.set(key, plot);
-    charts.append(holder);
   }
 }
 

@@ -19,6 +19,7 @@ out=test-results
 mkdir -p "$out"
 passed=0
 failed=0
+todo=0
 failed_suites=()
 
 count() {  # count SUITE PASSED FAILED STATUS
@@ -41,6 +42,11 @@ run_node_test() {  # run_node_test SUITE DIR
   p=$(grep -E '^# pass [0-9]+' "$log" | tail -1 | awk '{print $3}')
   f=$(grep -E '^# fail [0-9]+' "$log" | tail -1 | awk '{print $3}')
   count "$1" "${p:-0}" "${f:-0}" "$st"
+  # TODO tests (node:test `todo`) run and report but do not fail the suite: acceptance tests of
+  # open issues. They are listed in the summary so they are never silently forgotten.
+  local t
+  t=$(grep -E '^# todo [0-9]+' "$log" | tail -1 | awk '{print $3}')
+  todo=$((todo + ${t:-0}))
 }
 
 for suite in $suites; do
@@ -83,5 +89,9 @@ echo
 if [ ${#failed_suites[@]} -gt 0 ]; then
   say "failed suites: ${failed_suites[*]}"
 fi
-echo "tests: $passed passed, $failed failed"
+if [ "$todo" -gt 0 ]; then
+  echo "tests: $passed passed, $failed failed, $todo todo (acceptance tests of open issues)"
+else
+  echo "tests: $passed passed, $failed failed"
+fi
 [ "$failed" = 0 ] && [ ${#failed_suites[@]} = 0 ]

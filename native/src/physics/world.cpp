@@ -156,8 +156,22 @@ void World::step() {
     reservedBodies_ = bodies;
     reservedJoints_ = joints;
   }
+  // Each stepSimulation() call ends by clearing the applied forces and torques, so the
+  // controller's joint torques, applied once per control step, are saved and applied again
+  // before every later sub-step: they act for the whole 1/120 s, not only its first half.
   const auto h = static_cast<btScalar>(kFixedStep / kPhysicsSubsteps);
-  for (int i = 0; i < kPhysicsSubsteps; ++i) dynamics_->stepSimulation(h, 0, h);
+  applied_.resize(bodies_.size());
+  for (size_t b = 0; b < bodies_.size(); ++b)
+    applied_[b] = {bodies_[b]->getTotalForce(), bodies_[b]->getTotalTorque()};
+  for (int i = 0; i < kPhysicsSubsteps; ++i) {
+    if (i > 0) {
+      for (size_t b = 0; b < bodies_.size(); ++b) {
+        bodies_[b]->applyCentralForce(applied_[b].first);
+        bodies_[b]->applyTorque(applied_[b].second);
+      }
+    }
+    dynamics_->stepSimulation(h, 0, h);
+  }
 }
 
 double World::terrainHeight(double x, double z, double fallback) const {

@@ -2,6 +2,8 @@
 // gaitlab lives in physics/; the controller (gait/) never sees a Bullet type.
 #pragma once
 #include <Eigen/Dense>
+#include <LinearMath/btVector3.h>
+#include <utility>
 #include <memory>
 #include <vector>
 
@@ -82,6 +84,8 @@ class World {
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<btRigidBody*> bodies_;  // owned; deleted in the destructor or removeBody
+  // Forces and torques applied since the last step, re-applied before each later sub-step.
+  std::vector<std::pair<btVector3, btVector3>> applied_;
   btRigidBody* ground_ = nullptr;
   // The contents the solver's arrays were last sized for (World::step).
   int reservedBodies_ = -1, reservedJoints_ = -1;

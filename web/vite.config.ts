@@ -116,8 +116,8 @@ export default defineConfig({
   // Relative URLs in the built page, so it works from any folder of a static host.
   base: './',
   publicDir: path.join(repoDir, 'public'),
-  // Several HTML entry points (index.html now, bench.html later); no SPA fallback, so a missing
-  // file is a 404 instead of the demo page.
+  // Several HTML entry points (the demo, index.html, and the performance page, bench.html); no
+  // SPA fallback, so a missing file is a 404 instead of the demo page.
   appType: 'mpa',
   plugins: [gaitlabWasm(), coiServiceWorker()],
   server: { headers: isolationHeaders },
@@ -139,6 +139,7 @@ export default defineConfig({
     rolldownOptions: {
       input: {
         index: path.join(webDir, 'index.html'),
+        bench: path.join(webDir, 'bench.html'),
       },
     },
   },

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "api/cli_bench.h"
 #include "gait/defaults.h"
 #include "gait/heading.h"
 #include "gait/params_io.h"
@@ -281,6 +282,34 @@ const char* gl_opt_best_json(void* h) {
       {"evaluations", o.evaluations()}};
   opt(h)->text = gait::gaitFileJson(opt(h)->character, o.best(), o.generation() ? meta : nlohmann::json::object());
   return opt(h)->text.c_str();
+}
+
+// ---- Benchmark ------------------------------------------------------------------------------
+
+const char* gl_bench_machine(void) {
+  g_string = gaitlab::api::benchJsonMachine().dump();
+  return g_string.c_str();
+}
+
+const char* gl_bench_point(int legs, int characters, int threads, int mode, int steps, int runs,
+                           int shards, double spacing, uint32_t seed, int frames) {
+  g_string.clear();
+  if ((legs != 0 && legs != 2 && legs != 4) || characters < 1 || characters > 2000 || mode < 0 ||
+      mode > 2 || steps < 1 || runs < 1 || shards < 1 || shards > 64 || !(spacing >= 2.5))
+    return g_string.c_str();
+  gaitlab::sim::PointSpec s;
+  s.legs = legs;
+  s.characters = characters;
+  s.threads = threads < 1 ? 1 : threads > GL_MAX_THREADS ? GL_MAX_THREADS : threads;
+  s.mode = static_cast<gaitlab::sim::Mode>(mode);
+  s.steps = steps;
+  s.runs = runs;
+  s.shards = shards;
+  s.spacing = spacing;
+  s.seed = seed;
+  s.frames = frames != 0;
+  g_string = gaitlab::api::benchJsonPoint(gaitlab::sim::runPoint(s)).dump();
+  return g_string.c_str();
 }
 
 }  // extern "C"

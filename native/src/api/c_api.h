@@ -156,6 +156,22 @@ enum {
 // returns the number of characters (which may exceed `capacity`).
 GL_EXPORT int gl_sim_character_info(void* sim, double* out, int capacity);
 
+// ---- Benchmark (the performance page, web/src/bench) ----------------------------------------
+// The same measurement as `gaitlab bench` (native/src/sim/experiment.h), one point per call so
+// that the page can report progress and cancel between points. Both return JSON strings that
+// are parts of a bench/schema.json document; owned by the library, valid until the next call
+// of either function on the same thread.
+
+// The machine object of the document ("machine").
+GL_EXPORT const char* gl_bench_machine(void);
+
+// Runs one point and returns its element of "points". `legs` 2, 4, or 0 (mixed); `mode` 0
+// serial, 1 controller, 2 full; `threads` clamped to [1, GL_MAX_THREADS]; `frames` non-zero
+// keeps per-frame statistics. Returns "" for arguments out of range.
+GL_EXPORT const char* gl_bench_point(int legs, int characters, int threads, int mode, int steps,
+                                     int runs, int shards, double spacing, uint32_t seed,
+                                     int frames);
+
 #ifdef __cplusplus
 }
 #endif

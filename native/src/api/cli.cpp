@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "api/cli_bench.h"
 #include "gait/defaults.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
@@ -34,6 +35,7 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  walk       one character walks; prints what it achieved (speed, drift, duty factors...)\n"
+    "  bench      the thesis's performance experiment on crowds (gaitlab bench --help)\n"
     "  schema     prints the gait parameter schema (names, groups, bounds, defaults, units)\n"
     "  optimize   searches gait parameters (thesis §3.3) and writes the best as a gait file\n"
     "\n"
@@ -397,6 +399,7 @@ int runCli(int argc, char** argv) {
     return 0;
   }
   if (cmd == "walk") return walk(argc, argv);
+  if (cmd == "bench") return runBenchCli(argc, argv);
   if (cmd == "schema") return schema(argc, argv);
   if (cmd == "optimize") return optimizeCommand(argc, argv);
   return usageError("unknown command '" + cmd + "'");

@@ -4,17 +4,70 @@
 
 #include <algorithm>
 
+#if GAITLAB_BULLET_MT
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h>
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h>
+#endif
+
 #include "physics/convert.h"
 
 namespace gaitlab::physics {
 
-World::World()
-    : config_(std::make_unique<btDefaultCollisionConfiguration>()),
+namespace {
+
+// Bullet's sequential-impulse solver keeps its working arrays from step to step, but grows them
+// whenever a step needs more rows than any step before (a joint reaching a limit adds rows, every
+// new contact point three): a heap allocation in the middle of a step, at a moment nobody chose.
+// This solver sizes them for the worst case of the world's contents instead, once per change of
+// contents (World::step), so that steps in a steady scene allocate nothing (DESIGN.md, parallel
+// execution; tests/native/hot_path_test.cpp).
+class ReservingSolver : public btSequentialImpulseConstraintSolver {
+ public:
+  void reserveFor(int bodies, int joints) {
+    // A 6-DOF joint has at most 12 rows (a limit and a motor per axis); a body touches at most
+    // the ground and a couple of props, 4 points per contact manifold, each point a normal row
+    // and two friction rows.
+    const int jointRows = 12 * joints, contactPoints = 3 * 4 * bodies;
+    m_tmpSolverBodyPool.reserve(bodies + 1);
+    m_tmpConstraintSizesPool.reserve(joints);
+    m_tmpSolverNonContactConstraintPool.reserve(jointRows);
+    m_orderNonContactConstraintPool.reserve(jointRows);
+    m_tmpSolverContactConstraintPool.reserve(contactPoints);
+    m_orderTmpConstraintPool.reserve(contactPoints);
+    m_tmpSolverContactFrictionConstraintPool.reserve(2 * contactPoints);
+    m_orderFrictionConstraintPool.reserve(2 * contactPoints);
+  }
+};
+
+btDefaultCollisionConstructionInfo poolSizes(int contactPool) {
+  btDefaultCollisionConstructionInfo info;
+  info.m_defaultMaxPersistentManifoldPoolSize = contactPool;
+  info.m_defaultMaxCollisionAlgorithmPoolSize = contactPool;
+  return info;
+}
+}  // namespace
+
+#if GAITLAB_BULLET_MT
+// Only in the probe build `gaitlab_bullet_mt` (native/CMakeLists.txt, docs/parallel.md): Bullet's
+// own multithreaded world, whose collision dispatch and island solving run on the task scheduler
+// installed with btSetTaskScheduler, measured against gaitlab's physics shards.
+World::World(int contactPool)
+    : config_(std::make_unique<btDefaultCollisionConfiguration>(poolSizes(contactPool))),
+      dispatcher_(std::make_unique<btCollisionDispatcherMt>(config_.get(), 40)),
+      broadphase_(std::make_unique<btDbvtBroadphase>()),
+      solver_(std::make_unique<btConstraintSolverPoolMt>(8)),
+      dynamics_(std::make_unique<btDiscreteDynamicsWorldMt>(
+          dispatcher_.get(), broadphase_.get(), static_cast<btConstraintSolverPoolMt*>(solver_.get()),
+          nullptr, config_.get())) {
+#else
+World::World(int contactPool)
+    : config_(std::make_unique<btDefaultCollisionConfiguration>(poolSizes(contactPool))),
       dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
-      solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
+      solver_(std::make_unique<ReservingSolver>()),
       dynamics_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
                                                           solver_.get(), config_.get())) {
+#endif
   dynamics_->setGravity(btVector3(0, -9.81f, 0));
   // A character's trunk weighs 30-60 times its foot; sequential impulses converge slowly across
   // such mass ratios (see kPhysicsSubsteps for the rest of the story).
@@ -77,7 +130,32 @@ void World::removeBody(btRigidBody* body) {
                 shapes_.end());
 }
 
+void World::moveBodyTo(btRigidBody* body, World& other) {
+  auto it = std::find(bodies_.begin(), bodies_.end(), body);
+  if (it == bodies_.end() || &other == this) return;
+  const int group = body->getBroadphaseHandle()->m_collisionFilterGroup;
+  const int mask = body->getBroadphaseHandle()->m_collisionFilterMask;
+  dynamics_->removeRigidBody(body);  // also drops its contact manifolds in this world
+  bodies_.erase(it);
+  btCollisionShape* shape = body->getCollisionShape();
+  auto s = std::find_if(shapes_.begin(), shapes_.end(), [&](const auto& p) { return p.get() == shape; });
+  if (s != shapes_.end()) {
+    other.shapes_.push_back(std::move(*s));
+    shapes_.erase(s);
+  }
+  other.dynamics_->addRigidBody(body, group, mask);
+  other.bodies_.push_back(body);
+}
+
 void World::step() {
+  const int bodies = dynamics_->getNumCollisionObjects(), joints = dynamics_->getNumConstraints();
+  if (bodies != reservedBodies_ || joints != reservedJoints_) {
+#if !GAITLAB_BULLET_MT
+    static_cast<ReservingSolver*>(solver_.get())->reserveFor(bodies, joints);
+#endif
+    reservedBodies_ = bodies;
+    reservedJoints_ = joints;
+  }
   // Each stepSimulation() call ends by clearing the applied forces and torques, so the
   // controller's joint torques, applied once per control step, are saved and applied again
   // before every later sub-step: they act for the whole 1/120 s, not only its first half.

@@ -13,7 +13,7 @@ class btCollisionShape;
 class btDefaultCollisionConfiguration;
 class btDiscreteDynamicsWorld;
 class btRigidBody;
-class btSequentialImpulseConstraintSolver;
+class btConstraintSolver;
 
 namespace gaitlab::physics {
 
@@ -40,7 +40,11 @@ constexpr int kPhysicsSubsteps = 2;
 
 class World {
  public:
-  World();
+  // Bullet's default collision configuration pre-allocates pools for 4096 contact manifolds and
+  // collision algorithms (about 5 MB). A crowd split over several worlds (sim::Simulation's
+  // physics shards) needs only a share of that per world.
+  static constexpr int kDefaultContactPool = 4096;
+  explicit World(int contactPool = kDefaultContactPool);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -52,6 +56,9 @@ class World {
                       const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
                       int group, int mask, double friction);
   void removeBody(btRigidBody* body);
+  // Moves a loose body (a prop: no constraints attached) and its shape into `other`, keeping its
+  // state and collision filter. Its contact manifolds stay behind and are rebuilt in `other`.
+  void moveBodyTo(btRigidBody* body, World& other);
 
   // One fixed step of kFixedStep seconds, as kPhysicsSubsteps Bullet steps (no interpolation:
   // deterministic).
@@ -73,13 +80,15 @@ class World {
   std::unique_ptr<btDefaultCollisionConfiguration> config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<btConstraintSolver> solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<btRigidBody*> bodies_;  // owned; deleted in the destructor or removeBody
   // Forces and torques applied since the last step, re-applied before each later sub-step.
   std::vector<std::pair<btVector3, btVector3>> applied_;
   btRigidBody* ground_ = nullptr;
+  // The contents the solver's arrays were last sized for (World::step).
+  int reservedBodies_ = -1, reservedJoints_ = -1;
 };
 
 }  // namespace gaitlab::physics

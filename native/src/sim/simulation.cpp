@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
+#include <limits>
 #include <new>
 
 #include "gait/defaults.h"
@@ -43,9 +44,35 @@ struct Fnv1a {
 
 }  // namespace
 
-Simulation::Simulation(int threads, uint32_t seed)
+const char* modeName(Mode mode) {
+  switch (mode) {
+    case Mode::Serial: return "serial";
+    case Mode::Controller: return "controller";
+    case Mode::Full: return "full";
+  }
+  return "?";
+}
+
+bool parseMode(const std::string& name, Mode* out) {
+  for (Mode m : {Mode::Serial, Mode::Controller, Mode::Full}) {
+    if (name == modeName(m)) {
+      *out = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+Simulation::Simulation(int threads, uint32_t seed, int shards)
     : biped_(body::makeBiped()), quadruped_(body::makeQuadruped()), pool_(threads),
       seed_(seed ? seed : 1) {
+  if (shards < 1) shards = 1;
+  // A shard holds about 1/S of the crowd's contacts; 256 pooled manifolds cover 20 fallen
+  // quadrupeds (11 boxes each on the ground) before Bullet falls back to the heap.
+  const int pool = shards == 1 ? physics::World::kDefaultContactPool
+                               : std::max(256, physics::World::kDefaultContactPool / shards);
+  for (int s = 0; s < shards; ++s) worlds_.push_back(std::make_unique<physics::World>(pool));
+  shardAgents_.resize(shards);
   // One block: header, two matrix buffers, body info; offsets are relative to the header so the
   // layout reads the same from JavaScript (a 32-bit address space) and from native tests.
   const size_t matrixBytes = sizeof(float) * 16 * kRenderCapacity;
@@ -74,7 +101,7 @@ Simulation::Agent::Agent(physics::World& w, const body::Morphology& m,
 }
 
 Simulation::~Simulation() {
-  agents_.clear();  // constraints and bodies leave the world before it is destroyed
+  agents_.clear();  // constraints and bodies leave the worlds before they are destroyed
 }
 
 void Simulation::setGoal(int i, const gait::Goal& goal) {
@@ -97,6 +124,7 @@ void Simulation::control(Agent& a) {
   };
   a.controller.update(physics::kFixedStep, cs, a.torques.data());
   a.body->applyJointTorques(a.torques.data());
+  ++a.updates;
 }
 
 void Simulation::addRenderBody(btRigidBody* body, const BodyInfo& info) {
@@ -108,17 +136,31 @@ void Simulation::addRenderBody(btRigidBody* body, const BodyInfo& info) {
 int Simulation::spawn(Kind kind, double x, double z, double heading) {
   if (kind == Kind::Box) {
     if (bodyCount() + 1 > kRenderCapacity) return -1;
+    // The prop starts in the shard of the character nearest to it (rehomeProps keeps it there).
+    const int shard = nearestShard(x, z, 0);
     const Eigen::Vector3d half(0.15, 0.15, 0.15);
-    btRigidBody* b = world_.addBox(
+    btRigidBody* b = worlds_[shard]->addBox(
         half, 4.0, {x, 1.5, z}, Eigen::Quaterniond(Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY())),
         physics::kPropGroup, physics::kPropMask, 0.8);
+    props_.push_back({b, shard});
     addRenderBody(b, {{0.15f, 0.15f, 0.15f}, 0xe0c068ffu, -1, 0});
     return nextId_++;
   }
+  // A character spawned one at a time goes to the least populated shard (the first of equals).
+  int shard = 0;
+  for (int s = 1; s < shards(); ++s)
+    if (shardAgents_[s].size() < shardAgents_[shard].size()) shard = s;
+  return spawnCharacter(kind, x, z, heading, shard);
+}
+
+int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, int shard) {
   const body::Morphology& m = kind == Kind::Biped ? biped_ : quadruped_;
   if (bodyCount() + static_cast<int>(m.segments.size()) > kRenderCapacity) return -1;
-  const double groundY = world_.terrainHeight(x, z);
-  agents_.push_back(std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
+  physics::World& world = *worlds_[shard];
+  const double groundY = world.terrainHeight(x, z);
+  agents_.push_back(std::make_unique<Agent>(world, m, Eigen::Vector3d(x, groundY, z), heading));
+  agents_.back()->shard = shard;
+  shardAgents_[shard].push_back(agents_.back().get());
   const int id = nextId_++;
   agents_.back()->id = id;
   agents_.back()->kind = kind;
@@ -150,23 +192,90 @@ void Simulation::demoScene(int characters) {
   publish();
 }
 
+void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
+  const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(characters))));
+  for (int i = 0; i < characters; ++i) {
+    const double x = (i % columns - (columns - 1) / 2.0) * spacing;
+    const double z = (i / columns - (columns - 1) / 2.0) * spacing;
+    const Kind k = crowd == Crowd::Bipeds       ? Kind::Biped
+                   : crowd == Crowd::Quadrupeds ? Kind::Quadruped
+                   : i % 2 == 0                 ? Kind::Biped
+                                                : Kind::Quadruped;
+    // Contiguous chunks of the grid per shard, split like the thesis's thread chunks (§4.3).
+    int shard = 0;
+    while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
+    spawnCharacter(k, x, z, 0.0, shard);
+  }
+  publish();
+}
+
+void Simulation::stepShard(int shard) {
+  for (Agent* a : shardAgents_[shard]) std::fill(std::begin(a->footContact), std::end(a->footContact), false);
+  worlds_[shard]->step();
+  worlds_[shard]->updateContacts();
+}
+
+int Simulation::nearestShard(double x, double z, int fallback) const {
+  // Distance in the ground plane to each character's first segment (a leg frame), first of equals.
+  int shard = fallback;
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& a : agents_) {
+    const btVector3 r = a->body->body(0)->getCenterOfMassPosition();
+    const double d = (r.x() - x) * (r.x() - x) + (r.z() - z) * (r.z() - z);
+    if (d < best) best = d, shard = a->shard;
+  }
+  return shard;
+}
+
+void Simulation::rehomeProps() {
+  if (shards() == 1) return;
+  for (Prop& p : props_) {
+    const btVector3 q = p.body->getCenterOfMassPosition();
+    const int shard = nearestShard(q.x(), q.z(), p.shard);
+    if (shard != p.shard) {
+      worlds_[p.shard]->moveBodyTo(p.body, *worlds_[shard]);
+      p.shard = shard;
+    }
+  }
+}
+
 void Simulation::step(int steps) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  const auto controlChunk = [this](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) control(*agents_[i]);
+  };
+  const auto physicsChunk = [this](int begin, int end, int) {
+    for (int s = begin; s < end; ++s) stepShard(s);
+  };
   for (int s = 0; s < steps; ++s) {
-    // The controller loop is the parallel-for (thesis §3.1, §4.3); physics is serial.
-    const auto t0 = std::chrono::steady_clock::now();
-    pool_.parallelFor(characterCount(), [this](int begin, int end, int) {
-      for (int i = begin; i < end; ++i) control(*agents_[i]);
-    });
-    const auto t1 = std::chrono::steady_clock::now();
+    // The controller loop is the parallel-for (thesis §3.1, §4.3), timed from before the first
+    // thread starts until the last is done (§4.1).
+    const auto t0 = Clock::now();
+    if (mode_ == Mode::Serial) {
+      controlChunk(0, characterCount(), 0);
+    } else {
+      pool_.parallelFor(characterCount(), controlChunk);
+    }
+    const auto t1 = Clock::now();
     applyDrag();
-    world_.step();
-    const auto t2 = std::chrono::steady_clock::now();
-    controllerSeconds_ += std::chrono::duration<double>(t1 - t0).count();
-    physicsSeconds_ += std::chrono::duration<double>(t2 - t1).count();
-    for (auto& a : agents_) std::fill(std::begin(a->footContact), std::end(a->footContact), false);
-    world_.updateContacts();
+    // Physics: the shards one after another, or (full mode) as a second parallel-for. Each shard
+    // computes the same thing either way; only the thread that runs it differs.
+    if (mode_ == Mode::Full) {
+      pool_.parallelFor(shards(), physicsChunk);
+    } else {
+      physicsChunk(0, shards(), 0);
+    }
+    const auto t2 = Clock::now();
+    rehomeProps();
     ++stepIndex_;
     updateFallen();
+    const auto t3 = Clock::now();
+    lastStep_ = {seconds(t0, t1), seconds(t1, t2), seconds(t0, t3)};
+    controllerSeconds_ += lastStep_.controller;
+    physicsSeconds_ += lastStep_.physics;
   }
   publish();
 }
@@ -233,9 +342,13 @@ int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& vel
   // Solid wood, roughly (600 kg/m³): a 0.24 m box weighs ~8 kg, enough at 10-15 m/s to knock
   // a 1.7 m biped sideways without flinging it across the scene.
   const double mass = 600.0 * std::pow(2 * half, 3);
-  btRigidBody* b = world_.addBox(Eigen::Vector3d::Constant(half), mass, from,
-                                 Eigen::Quaterniond::Identity(), physics::kPropGroup,
-                                 physics::kPropMask, 0.8);
+  // Like every prop, it starts in the shard of the character nearest to it and follows its
+  // nearest character from shard to shard as it flies (rehomeProps, docs/parallel.md).
+  const int shard = nearestShard(from.x(), from.z(), 0);
+  btRigidBody* b = worlds_[shard]->addBox(Eigen::Vector3d::Constant(half), mass, from,
+                                          Eigen::Quaterniond::Identity(), physics::kPropGroup,
+                                          physics::kPropMask, 0.8);
+  props_.push_back({b, shard});
   b->setLinearVelocity(physics::toBt(velocity));
   // Thrown boxes are the warm wood colour of the scene's boxes, a shade darker to tell them apart.
   const float h = static_cast<float>(half);
@@ -245,7 +358,9 @@ int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& vel
     btRigidBody* oldest = thrown_.front();
     thrown_.erase(thrown_.begin());
     removeRenderBodies({oldest});
-    world_.removeBody(oldest);
+    const auto prop = std::find_if(props_.begin(), props_.end(), [&](const Prop& q) { return q.body == oldest; });
+    worlds_[prop->shard]->removeBody(oldest);
+    props_.erase(prop);
   }
   return nextId_++;
 }
@@ -309,10 +424,13 @@ bool Simulation::resetCharacter(int id) {
   std::vector<btRigidBody*> oldBodies;
   for (int k = 0; k < old.body->segmentCount(); ++k) oldBodies.push_back(old.body->body(k));
 
-  auto fresh = std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, world_.terrainHeight(x, z), z),
+  physics::World& world = *worlds_[old.shard];
+  auto fresh = std::make_unique<Agent>(world, m, Eigen::Vector3d(x, world.terrainHeight(x, z), z),
                                        heading);
   fresh->id = id;
   fresh->kind = kind;
+  fresh->shard = old.shard;
+  std::replace(shardAgents_[old.shard].begin(), shardAgents_[old.shard].end(), &old, fresh.get());
   fresh->controller.setParams(params);
   fresh->controller.setGoal(goal);
   // Same morphology, same number of bodies in the same order: the render entries keep their
@@ -331,6 +449,8 @@ bool Simulation::removeCharacter(int id) {
   std::vector<btRigidBody*> bodies;
   for (int k = 0; k < agents_[i]->body->segmentCount(); ++k) bodies.push_back(agents_[i]->body->body(k));
   removeRenderBodies(bodies);
+  auto& inShard = shardAgents_[agents_[i]->shard];
+  inShard.erase(std::find(inShard.begin(), inShard.end(), agents_[i].get()));
   agents_.erase(agents_.begin() + i);
   if (drag_.id == id) endDrag();
   return true;

@@ -1,6 +1,14 @@
-// The crowd simulation: one Bullet world, the characters in it, loose props, the fixed-step loop
-// (thesis §3.2: 120 Hz), the thread pool for per-character work, the state hash, and the render
-// buffer shared with the browser (render_buffer.h).
+// The crowd simulation: the characters, loose props, the Bullet world(s) they live in, the
+// fixed-step loop (thesis §3.2: 120 Hz), the thread pool and the execution mode, per-step timing,
+// the state hash, and the render buffer shared with the browser (render_buffer.h).
+//
+// Physics shards. The crowd's physics may be split over S independent Bullet worlds ("shards"),
+// fixed when the simulation is made. Characters never collide with each other (physics/world.h),
+// so a character needs only the ground and the props near it; a prop lives in the shard of the
+// character nearest to it and moves between shards as that changes (between steps, in a fixed
+// order). S is an input of the scene like the seed: the execution mode and the thread count only
+// decide which thread steps which shard, never what a shard computes, which is why every mode and
+// thread count gives the bit-identical state (docs/parallel.md).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -18,11 +26,33 @@ namespace gaitlab::sim {
 
 enum class Kind { Biped = 0, Quadruped = 1, Box = 2 };
 
+// Who makes up a benchmark crowd (crowdScene): thesis §4.1 measured bipeds and quadrupeds apart.
+enum class Crowd { Bipeds, Quadrupeds, Mixed };
+
+// How a fixed step uses the thread pool (chosen at run time; docs/parallel.md):
+//   Serial      everything on the calling thread;
+//   Controller  the thesis's mode (§3.1, §4.1): the controller loop is a parallel-for over the
+//               characters in T contiguous chunks, the first N mod T one larger (§4.3); physics
+//               is serial;
+//   Full        the controller loop as above, then the physics shards as a second parallel-for.
+enum class Mode { Serial = 0, Controller = 1, Full = 2 };
+const char* modeName(Mode mode);
+bool parseMode(const std::string& name, Mode* out);
+
+// Wall-clock seconds of one fixed step. `controller` is the thesis's measure (§4.1: "from before
+// the start of the first thread until all threads have finished"), `physics` the same for the
+// Bullet step and contact update, `step` the whole fixed step (both, plus moving props between
+// shards), render publishing excluded as the thesis excluded rendering.
+struct StepTiming {
+  double controller = 0, physics = 0, step = 0;
+};
+
 class Simulation {
  public:
   static constexpr int kRenderCapacity = 16384;  // bodies
 
-  Simulation(int threads, uint32_t seed);
+  // `shards` >= 1 independent Bullet worlds (see above); 1 is a single world.
+  Simulation(int threads, uint32_t seed, int shards = 1);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -32,13 +62,29 @@ class Simulation {
   int spawn(Kind kind, double x, double z, double heading);
   // `characters` figures on a grid, alternating biped and quadruped, plus a few boxes.
   void demoScene(int characters);
+  // The thesis experiment's crowd (§4.1, Figures 4.5, 4.6): `characters` bipeds, quadrupeds or
+  // both (alternating) on a square grid `spacing` metres apart, centred on the origin, all facing
+  // +z; no props. Shard s gets the s-th contiguous chunk of the grid (rows), so neighbours share
+  // a world.
+  void crowdScene(Crowd crowd, int characters, double spacing);
 
+  void setMode(Mode mode) { mode_ = mode; }
+  Mode mode() const { return mode_; }
+  int shards() const { return static_cast<int>(worlds_.size()); }
+  // The shard character i lives in.
+  int shardOf(int i) const { return agents_[i]->shard; }
+  // Timing of the last fixed step.
+  const StepTiming& lastStep() const { return lastStep_; }
+  // How many times the controller has run for character i (each step must run it exactly once).
+  uint64_t controllerUpdates(int i) const { return agents_[i]->updates; }
   void step(int steps);
 
   double time() const { return stepIndex_ * physics::kFixedStep; }
   uint32_t stepIndex() const { return stepIndex_; }
   int bodyCount() const { return static_cast<int>(renderBodies_.size()); }
   int threads() const { return pool_.size(); }
+  // The simulation's thread pool (the Bullet-multithreading probe runs Bullet's tasks on it).
+  ThreadPool& pool() { return pool_; }
   int characterCount() const { return static_cast<int>(agents_.size()); }
   // The index (0..characterCount()-1) of the character spawn() returned `id` for, or -1 when
   // `id` names no character (a box, or nothing spawned).
@@ -46,7 +92,7 @@ class Simulation {
   int characterId(int index) const { return agents_[index]->id; }
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }
-  double groundHeight(double x, double z) const { return world_.terrainHeight(x, z); }
+  double groundHeight(double x, double z) const { return worlds_[0]->terrainHeight(x, z); }
   // Wall-clock seconds spent so far in the controller loop (thesis timing: from before the
   // first thread starts until the last is done) and in the physics step.
   double controllerSeconds() const { return controllerSeconds_; }
@@ -107,8 +153,14 @@ class Simulation {
   };
   void addRenderBody(btRigidBody* body, const BodyInfo& info);
   void publish();  // writes transforms into the back buffer and flips it to the front
+  int spawnCharacter(Kind kind, double x, double z, double heading, int shard);
+  void stepShard(int shard);  // Bullet step and foot contacts of one shard
+  void rehomeProps();         // moves each prop into the shard of its nearest character
+  int nearestShard(double x, double z, int fallback) const;  // shard of the nearest character
 
-  physics::World world_;
+  // The physics shards; one unless asked otherwise. Each is a complete Bullet world with its own
+  // ground, dispatcher and solver, so shards can be stepped concurrently without sharing state.
+  std::vector<std::unique_ptr<physics::World>> worlds_;
   body::Morphology biped_, quadruped_;
   // A character: its bodies in the world, its controller, and the buffers the controller reads
   // and writes, allocated once so the per-step loop allocates nothing (defect 10).
@@ -124,11 +176,23 @@ class Simulation {
     int id = -1;
     Kind kind = Kind::Biped;
     double fallenSince = -1;  // simulated time it was first seen fallen; -1 = standing
+    int shard = 0;
+    uint64_t updates = 0;
+  };
+  // A loose body (a dropped or thrown box) and the shard it lives in.
+  struct Prop {
+    btRigidBody* body;
+    int shard;
   };
   void control(Agent& agent);
   std::vector<std::unique_ptr<Agent>> agents_;
   std::vector<RenderBody> renderBodies_;
+  std::vector<Prop> props_;
+  // Agents of each shard in spawn order, for the per-shard contact update.
+  std::vector<std::vector<Agent*>> shardAgents_;
   ThreadPool pool_;
+  Mode mode_ = Mode::Controller;
+  StepTiming lastStep_;
   uint32_t seed_;
 
   // Interaction state (see the section above).

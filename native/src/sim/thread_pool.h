@@ -6,10 +6,18 @@
 // no heap allocation and takes no lock while the workers are awake. Idle workers spin briefly
 // (yielding) and then sleep on a condition variable, so an idle simulation costs no CPU; only
 // waking a sleeping worker takes the mutex.
+//
+// Late workers. Chunk t is meant for thread t, but a chunk is claimed (an atomic compare-and-swap
+// per chunk and loop) by whichever thread gets to it first: the caller, once done with its own
+// chunk, takes every chunk whose thread has not started yet. On a machine whose cores are busy
+// with other work (or a browser tab in the background) a worker may not be scheduled for
+// milliseconds; without this the whole loop would wait for it. The chunks themselves stay
+// fixed (the thesis's partition), so the results do not depend on who ran them.
 #pragma once
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <type_traits>
 #include <thread>
@@ -34,8 +42,9 @@ class ThreadPool {
   // Chunk `t` of `n` items split over `threads` (thesis §4.3).
   static Range chunk(int n, int threads, int t);
 
-  // Calls fn(begin, end, thread) for each of size() contiguous chunks of [0, n), chunk t on
-  // thread t (the caller is thread 0), and returns when every chunk is done.
+  // Calls fn(begin, end, t) for each chunk t of the size() contiguous chunks of [0, n), normally
+  // on thread t (the caller is thread 0; see "late workers" above), and returns when every chunk
+  // is done.
   template <class F>
   void parallelFor(int n, F&& fn) {
     if (size() == 1 || n <= 1) {
@@ -51,10 +60,19 @@ class ThreadPool {
   using Task = void (*)(void*, int, int, int);
   void run(int n, Task task, void* ctx);
   void workerLoop(int thread);
+  // Runs chunk c of loop `generation` unless another thread has claimed it already.
+  void runChunk(int c, uint64_t generation);
+
+  // The loop generation each chunk was last claimed for; a cache line each, as every thread
+  // writes one.
+  struct alignas(64) Claim {
+    std::atomic<uint64_t> generation{0};
+  };
 
   std::vector<std::thread> workers_;
+  std::unique_ptr<Claim[]> claims_;      // one per chunk, size()
   std::atomic<uint64_t> generation_{0};  // bumped once per parallelFor
-  std::atomic<int> pending_{0};          // workers still running the current loop
+  std::atomic<int> pending_{0};          // chunks of the current loop not finished yet
   std::atomic<int> sleeping_{0};
   std::atomic<bool> stop_{false};
   Task task_ = nullptr;

@@ -1,0 +1,71 @@
+// The thesis's performance experiment (Chapter 4), extended to the physics step and to our
+// execution modes: one *point* of the experiment is a crowd of N characters with a leg count,
+// simulated `runs` times for `steps` fixed steps (thesis: 20 runs of 800 steps at 120 Hz),
+// a fresh simulation (a restarted Bullet) for every run, each step timed.
+//
+// Statistics, after thesis §4.1 ("mean and standard deviation are calculated on a per-frame- and
+// per-execution basis"):
+//   per frame      for each step index f, mean and sd over the runs (thesis Figures 5.1, 5.2);
+//   per execution  mean and sd over every step of every run (Figures 5.3-5.5, Tables 6.1-6.3),
+//                  plus the median, 99th percentile and maximum step (the thesis saw single-frame
+//                  spikes it could not explain, §6.3).
+// Used by the `gaitlab bench` command (api/cli_bench.cpp) and the browser's performance page
+// (through the C API), so that every runtime measures with the same code.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/simulation.h"
+
+namespace gaitlab::sim {
+
+// Leg count of a crowd: 2 (bipeds), 4 (quadrupeds), or 0 for a mixed crowd (alternating).
+enum Legs { kMixed = 0, kBiped = 2, kQuadruped = 4 };
+
+struct PointSpec {
+  int legs = kBiped;
+  int characters = 1;
+  int threads = 1;
+  Mode mode = Mode::Serial;
+  int steps = 800;
+  int runs = 20;
+  // Physics shards (simulation.h). Fixed by the experiment, not by the thread count, so that
+  // every mode and thread count of a point simulates exactly the same thing.
+  int shards = 12;
+  double spacing = 4.0;  // metres between neighbours on the grid: well apart, no overlap
+  uint32_t seed = 1;
+  bool frames = false;  // keep the per-frame statistics
+};
+
+struct Stat {
+  double mean = 0, sd = 0;
+};
+
+struct PointResult {
+  PointSpec spec;
+  int shards = 1;  // in use: min(spec.shards, characters)
+  // Per execution, milliseconds.
+  Stat controller, physics, step;
+  double stepMedian = 0, stepP99 = 0, stepMax = 0;
+  // Per frame (spec.frames), milliseconds, one entry per step index.
+  std::vector<Stat> frameController, framePhysics, frameStep;
+  // Memory after the last run with its simulation still alive: bytes the allocator hands out
+  // (on the WASM heap in WebAssembly) and what the scene itself added; the process's resident
+  // set where the system tells it (-1 if not).
+  int64_t heapBytes = 0, sceneHeapBytes = 0, rssBytes = -1;
+  std::string stateHash;
+  bool deterministic = true;  // every run ended in the same state
+};
+
+// Runs one point of the experiment.
+PointResult runPoint(const PointSpec& spec);
+
+// Nearest-rank percentile p (0-100) of `samples`.
+double percentile(std::vector<double>& samples, double p);  // sorts `samples`
+
+// Allocator and process memory, for the memory figures.
+int64_t heapInUse();
+int64_t residentSetBytes();
+
+}  // namespace gaitlab::sim

@@ -1,0 +1,108 @@
+// `gaitlab bench` natively and as WebAssembly under Node print the same document, valid against
+// bench/schema.json; `npm run bench`'s driver (bench/run.mjs --tiny) runs a tiny grid natively, in
+// Node and in headless Chromium and writes a valid results file, its tables and its charts.
+// Nothing here judges a timing: that is the benchmark's business.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { toCsv, validate } from '../../bench/lib/analysis.mjs';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const native = path.join(root, 'build/native/gaitlab');
+
+function run(cmd, args, timeout = 120_000) {
+  const r = spawnSync(cmd, args, { cwd: root, encoding: 'utf8', timeout });
+  return { status: r.status, stdout: r.stdout, stderr: r.stderr };
+}
+
+const tiny = ['bench', '--legs', '2,4', '--characters', '1-3:2', '--threads', '1,2', '--mode', 'serial,controller,full',
+  '--steps', '6', '--runs', '2', '--frames'];
+
+test('native and WASM `bench --json` print documents valid against bench/schema.json', () => {
+  const docs = [];
+  for (const [cmd, pre] of [[native, []], [process.execPath, ['bench/wasm.mjs']]]) {
+    const r = run(cmd, [...pre, ...tiny, '--json']);
+    assert.equal(r.status, 0, r.stderr);
+    const doc = JSON.parse(r.stdout);
+    assert.deepEqual(validate(doc), []);
+    docs.push(doc);
+  }
+  const [a, b] = docs;
+  assert.equal(a.machine.runtime, 'native');
+  assert.equal(b.machine.runtime, 'wasm-node');
+  assert.deepEqual(a.inputs, b.inputs);
+  // legs 2,4 x (serial once + controller and full on 1 and 2 threads) x characters 1, 3.
+  assert.equal(a.points.length, 2 * 5 * 2);
+  assert.deepEqual(a.points.map((p) => [p.legs, p.mode, p.threads, p.characters]),
+    b.points.map((p) => [p.legs, p.mode, p.threads, p.characters]));
+  for (const doc of docs) {
+    for (const p of doc.points) {
+      assert.ok(p.deterministic, 'every run of a point ends in the same state');
+      assert.equal(p.frames.step_ms.mean.length, 6);
+      // The same crowd gives the same state in every mode and thread count.
+      const same = doc.points.filter((q) => q.legs === p.legs && q.characters === p.characters);
+      assert.ok(same.every((q) => q.state_hash === p.state_hash), `state differs across modes: ${p.legs} legs x ${p.characters}`);
+    }
+  }
+});
+
+test('`bench --csv` prints the machine, a header and a row per point, like the JS writer', () => {
+  const r = run(native, ['bench', '--legs', '2', '--characters', '2', '--threads', '2', '--mode', 'serial,full', '--steps', '3', '--runs', '1', '--csv']);
+  assert.equal(r.status, 0, r.stderr);
+  const lines = r.stdout.trim().split('\n');
+  assert.match(lines[0], /^# \{.*"runtime":"native"/);
+  assert.match(lines[1], /^# inputs /);
+  const j = run(native, ['bench', '--legs', '2', '--characters', '2', '--threads', '2', '--mode', 'serial,full', '--steps', '3', '--runs', '1', '--json']);
+  const fromJs = toCsv(JSON.parse(j.stdout)).trim().split('\n');
+  assert.equal(lines[2], fromJs[2], 'the same columns');
+  assert.equal(lines.length, 3 + 2);
+  assert.deepEqual(lines.slice(3).map((l) => l.split(',').length), [fromJs[2].split(',').length, fromJs[2].split(',').length]);
+});
+
+for (const [args, message] of [
+  [['--legs', '3'], /--legs: '3' is not 2, 4 or mixed/],
+  [['--characters', '0-5'], /--characters: '0-5' is not a range/],
+  [['--threads', '9'], /--threads: '9' is not a number in \[1, 5\]/],
+  [['--mode', 'parallel'], /--mode: 'parallel' is not serial, controller or full/],
+  [['--steps', 'x'], /--steps: 'x' is not a number/],
+  [['--json', '--csv'], /exclusive/],
+]) {
+  test(`bench refuses ${args.join(' ')}`, () => {
+    for (const [cmd, pre] of [[native, []], [process.execPath, ['bench/wasm.mjs']]]) {
+      const r = run(cmd, [...pre, 'bench', ...args]);
+      assert.equal(r.status, 2);
+      assert.match(r.stderr, message);
+      assert.equal(r.stdout, '');
+    }
+  });
+}
+
+test('bench/run.mjs --tiny: native, WASM in Node and in Chromium, a valid results file and charts', () => {
+  const out = fs.mkdtempSync(path.join(os.tmpdir(), 'gaitlab-bench-'));
+  try {
+    const r = run(process.execPath, ['bench/run.mjs', '--tiny', '--out', out], 240_000);
+    assert.equal(r.status, 0, r.stderr);
+    const files = fs.readdirSync(out);
+    const json = files.find((f) => f.endsWith('.json'));
+    assert.ok(json, 'a results file');
+    const results = JSON.parse(fs.readFileSync(path.join(out, json), 'utf8'));
+    assert.deepEqual(validate(results, 'results'), []);
+    assert.deepEqual([...new Set(results.runs.map((d) => d.machine.runtime))], ['native', 'wasm-node', 'wasm-browser']);
+    const browser = results.runs.find((d) => d.machine.runtime === 'wasm-browser');
+    assert.equal(browser.machine.cross_origin_isolated, true);
+    const svgs = files.filter((f) => f.endsWith('.svg'));
+    for (const fig of ['fig5_1', 'fig5_2', 'fig5_3', 'fig5_4', 'fig5_5', 'fig6_1', 'fig6_2', 'share-physics-controller', 'wasm-native-ratio', 'realtime-capacity']) {
+      assert.ok(svgs.some((f) => f.includes(fig)), `chart ${fig}`);
+    }
+    for (const f of svgs) assert.match(fs.readFileSync(path.join(out, f), 'utf8'), /^<svg [^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"[\s\S]*<\/svg>\s*$/);
+    const md = fs.readFileSync(path.join(out, files.find((f) => f.endsWith('.md'))), 'utf8');
+    assert.match(md, /Goals \(issue 4\)/);
+    assert.match(md, /Same state in every mode and thread count: yes/);
+  } finally {
+    fs.rmSync(out, { recursive: true, force: true });
+  }
+});

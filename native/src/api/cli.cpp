@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "api/cli_bench.h"
+#include "api/options.h"
 #include "gait/defaults.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
@@ -81,52 +82,6 @@ int usageError(const std::string& message) {
   return 2;
 }
 
-// "--name value" and "--flag" options; refuses anything not in `valued` or `flags`.
-struct Options {
-  std::map<std::string, std::string> values;
-  std::set<std::string> flags;
-  std::string error;
-
-  Options(int argc, char** argv, int first, const std::set<std::string>& valued,
-          const std::set<std::string>& flagNames) {
-    for (int i = first; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (flagNames.count(a)) {
-        flags.insert(a);
-      } else if (valued.count(a)) {
-        if (i + 1 >= argc) {
-          error = "option " + a + " needs a value";
-          return;
-        }
-        values[a] = argv[++i];
-      } else {
-        error = "unknown option '" + a + "'";
-        return;
-      }
-    }
-  }
-
-  // A finite number within [lo, hi], or the default when absent.
-  bool number(const std::string& name, double lo, double hi, double fallback, double* out) {
-    auto it = values.find(name);
-    if (it == values.end()) {
-      *out = fallback;
-      return true;
-    }
-    char* end = nullptr;
-    const double v = std::strtod(it->second.c_str(), &end);
-    if (end == it->second.c_str() || *end != '\0' || !std::isfinite(v)) {
-      error = name + ": '" + it->second + "' is not a number";
-      return false;
-    }
-    if (v < lo || v > hi) {
-      error = name + ": " + it->second + " is outside [" + json(lo).dump() + ", " + json(hi).dump() + "]";
-      return false;
-    }
-    *out = v;
-    return true;
-  }
-};
 
 // --character, when given, must name a character.
 bool characterOption(Options& o, std::optional<gait::Character>* out) {

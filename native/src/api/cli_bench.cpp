@@ -1,5 +1,7 @@
 #include "api/cli_bench.h"
 
+#include "api/options.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -238,48 +240,36 @@ int runBenchCli(int argc, char** argv) {
   sim::PointSpec base;
   bool asJson = false, asCsv = false;
   std::string error;
-  std::string legsText = "2", charactersText = "1-100:11", threadsText = "1,2",
-              modesText = "serial,controller,full";
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::fputs(kBenchUsage, stdout);
-      return 0;
-    }
-    if (a == "--json") { asJson = true; continue; }
-    if (a == "--csv") { asCsv = true; continue; }
-    if (a == "--frames") { base.frames = true; continue; }
-    const bool valued = a == "--legs" || a == "--characters" || a == "--threads" || a == "--mode" ||
-                        a == "--steps" || a == "--runs" || a == "--shards" || a == "--spacing" ||
-                        a == "--seed";
-    if (!valued) return benchError("unknown option '" + a + "'");
-    if (i + 1 >= argc) return benchError("option " + a + " needs a value");
-    const std::string v = argv[++i];
-    long n;
-    if (a == "--legs") legsText = v;
-    else if (a == "--characters") charactersText = v;
-    else if (a == "--threads") threadsText = v;
-    else if (a == "--mode") modesText = v;
-    else if (a == "--steps") {
-      if (!parseInt(v, 1, 100000, &n)) return benchError("--steps: '" + v + "' is not a number in [1, 100000]");
-      base.steps = static_cast<int>(n);
-    } else if (a == "--runs") {
-      if (!parseInt(v, 1, 1000, &n)) return benchError("--runs: '" + v + "' is not a number in [1, 1000]");
-      base.runs = static_cast<int>(n);
-    } else if (a == "--shards") {
-      if (!parseInt(v, 1, 64, &n)) return benchError("--shards: '" + v + "' is not a number in [1, 64]");
-      base.shards = static_cast<int>(n);
-    } else if (a == "--seed") {
-      if (!parseInt(v, 0, 2147483647, &n)) return benchError("--seed: '" + v + "' is not a number");
-      base.seed = static_cast<uint32_t>(n);
-    } else {  // --spacing
-      char* end = nullptr;
-      const double d = std::strtod(v.c_str(), &end);
-      if (v.empty() || *end != '\0' || !(d >= 2.5 && d <= 100))
-        return benchError("--spacing: '" + v + "' is not a distance in [2.5, 100] m");
-      base.spacing = d;
-    }
+  Options o(argc, argv, 2,
+            {"--legs", "--characters", "--threads", "--mode", "--steps", "--runs", "--shards",
+             "--spacing", "--seed"},
+            {"--help", "-h", "--json", "--csv", "--frames"});
+  if (!o.error.empty()) return benchError(o.error);
+  if (o.flags.count("--help") || o.flags.count("-h")) {
+    std::fputs(kBenchUsage, stdout);
+    return 0;
   }
+  asJson = o.flags.count("--json") > 0;
+  asCsv = o.flags.count("--csv") > 0;
+  base.frames = o.flags.count("--frames") > 0;
+  const auto text = [&](const char* name, const char* fallback) {
+    const auto it = o.values.find(name);
+    return it == o.values.end() ? std::string(fallback) : it->second;
+  };
+  const std::string legsText = text("--legs", "2"), charactersText = text("--characters", "1-100:11"),
+                    threadsText = text("--threads", "1,2"),
+                    modesText = text("--mode", "serial,controller,full");
+  long steps, runs, shards, seed;
+  if (!o.integer("--steps", 1, 100000, base.steps, &steps) ||
+      !o.integer("--runs", 1, 1000, base.runs, &runs) ||
+      !o.integer("--shards", 1, 64, base.shards, &shards) ||
+      !o.integer("--seed", 0, 2147483647, base.seed, &seed) ||
+      !o.number("--spacing", 2.5, 100, base.spacing, &base.spacing))
+    return benchError(o.error);
+  base.steps = static_cast<int>(steps);
+  base.runs = static_cast<int>(runs);
+  base.shards = static_cast<int>(shards);
+  base.seed = static_cast<uint32_t>(seed);
   if (asJson && asCsv) return benchError("--json and --csv are exclusive");
   // Leg counts and modes are words; the rest numbers.
   for (size_t start = 0; start <= legsText.size();) {

@@ -1,0 +1,73 @@
+// Command-line options of the `gaitlab` subcommands: "--name value" and "--flag", with numbers
+// checked to be finite and within bounds, and errors that name the option.
+#pragma once
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+namespace gaitlab::api {
+
+// "--name value" and "--flag" options; refuses anything not in `valued` or `flags`.
+struct Options {
+  std::map<std::string, std::string> values;
+  std::set<std::string> flags;
+  std::string error;
+
+  Options(int argc, char** argv, int first, const std::set<std::string>& valued,
+          const std::set<std::string>& flagNames) {
+    for (int i = first; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (flagNames.count(a)) {
+        flags.insert(a);
+      } else if (valued.count(a)) {
+        if (i + 1 >= argc) {
+          error = "option " + a + " needs a value";
+          return;
+        }
+        values[a] = argv[++i];
+      } else {
+        error = "unknown option '" + a + "'";
+        return;
+      }
+    }
+  }
+
+  // A finite number within [lo, hi], or the default when absent.
+  bool number(const std::string& name, double lo, double hi, double fallback, double* out) {
+    auto it = values.find(name);
+    if (it == values.end()) {
+      *out = fallback;
+      return true;
+    }
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    if (end == it->second.c_str() || *end != '\0' || !std::isfinite(v)) {
+      error = name + ": '" + it->second + "' is not a number";
+      return false;
+    }
+    if (v < lo || v > hi) {
+      error = name + ": " + it->second + " is outside [" + nlohmann::json(lo).dump() + ", " + nlohmann::json(hi).dump() + "]";
+      return false;
+    }
+    *out = v;
+    return true;
+  }
+
+  // An integer within [lo, hi], or the default when absent.
+  bool integer(const std::string& name, long lo, long hi, long fallback, long* out) {
+    double v;
+    if (!number(name, static_cast<double>(lo), static_cast<double>(hi), static_cast<double>(fallback), &v))
+      return false;
+    if (v != std::floor(v)) {
+      error = name + ": '" + values[name] + "' is not a whole number";
+      return false;
+    }
+    *out = static_cast<long>(v);
+    return true;
+  }
+};
+
+}  // namespace gaitlab::api

@@ -57,9 +57,14 @@ Controller::Controller(const body::Morphology& morphology, const GaitParams& par
     g.shin = (foot.joint.pivot - lower.joint.pivot).norm();
     g.ankleHeight = foot.joint.pivot.y() - (foot.center.y() - foot.halfExtents.y());
     g.side = upper.joint.pivot.x() >= 0 ? 1.0 : -1.0;
+    const double ahead = foot.center.z() - foot.joint.pivot.z();
+    g.toe = ahead + foot.halfExtents.z();
+    g.heel = foot.halfExtents.z() - ahead;
+    g.halfWidth = foot.halfExtents.x();
     geometry_.push_back(g);
   }
   liftOff_.assign(m_.legs.size(), Vector3d::Zero());
+  weight_ = m_.totalMass() * -gravity_.y();
   setParams(params);
 }
 
@@ -108,6 +113,9 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   // Gait player (§3.1.1): phase, stance/swing, early and late strikes.
   player_.update(dt, s.footContact);
   const double phase = player_.phase();
+
+  stanceLegs_ = 0;
+  for (int l = 0; l < player_.legCount(); ++l) stanceLegs_ += player_.leg(l).stance ? 1 : 0;
 
   if (!m_.spine.empty()) spine(s, torques);
 
@@ -183,28 +191,31 @@ void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vec
                            Vector3d* torques) {
   const body::Leg& leg = m_.legs[l];
 
-  // The leg frame is the base, the stance foot the end point: the opposite of the force wanted
-  // on the leg frame is applied at the foot (§3.1.4, Figure 3.4).
+  // The virtual force F wanted on the leg frame (§3.1.4, Figure 3.4), by the Jacobian
+  // transpose over the stance leg. The foot is what stays put, so each joint's torque is the
+  // moment of F about it taken at the leg frame, (p_j − p_lf) × F: turning joint j with the
+  // foot fixed moves the leg frame, not the foot. Written with the chain's usual leg-frame-base
+  // convention this is −F at the point p_lf. Taking −F at the sole instead, as a free swing
+  // leg would, differs by the constant moment (p_sole − p_lf) × F, which only the stance hip
+  // could supply, and the stance hip is spent on the leg frame's orientation (below): the
+  // knee and ankle were left pushing the leg frame backwards when it was asked to go forwards.
   const DofChain chain = legChain(l, s);
-  const Vector3d sole = jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
-  accumulateJointTorques(chain, sole, -force, torques, static_cast<int>(m_.segments.size()));
+  accumulateJointTorques(chain, s.segments[leg.legFrame].position, -force, torques,
+                         static_cast<int>(m_.segments.size()));
 
   // Knee: PD towards a slightly bent stance knee (§3.1.4, §3.1.7).
   kneePd(l, s, params_.gains.stanceKneeFlexion, torques);
 
-  // Stance ankle: a joint PD holding the foot square to the shin, then pitched to the toe-off
-  // angle after the toe-off time (§3.1.6, §3.1.7). With the foot flat on the ground this is
-  // what keeps the stance leg from toppling over it; a world-frame "keep the foot level" PD
-  // exerts nothing while the foot lies flat.
+  // Stance ankle (§3.1.6–3.1.7): the foot is held flat on the ground in the heading frame, and
+  // pitched to the toe-off angle after the toe-off time. While it lies flat this PD exerts
+  // nothing and the stance leg pivots freely over its ankle, an inverted pendulum; the ankle
+  // torque left is the virtual forces' share from above. Whatever the sum, it is limited to
+  // what the ground can return (limitToSupport): a foot asked for more rolls onto its edge.
   const LegParams& lp = params_.legs[l];
   const LegFrameParams& fp = params_.legFrames[legFrameIndex(leg)];
   const double pitch = player_.leg(l).progress > lp.toeOffTime ? fp.toeOffAngle : 0.0;
-  const BodyState& shin = s.segments[leg.lower];
-  const BodyState& foot = s.segments[leg.foot];
-  torques[leg.foot] += jointPd(params_.gains.stanceAnkleKp, params_.gains.stanceAnkleKd,
-                               shin.orientation, foot.orientation,
-                               Quaterniond(Eigen::AngleAxisd(pitch, Vector3d::UnitX())),
-                               shin.angularVelocity, foot.angularVelocity);
+  footPd(l, s, yaw, pitch, params_.gains.stanceAnkleKp, params_.gains.stanceAnkleKd, torques);
+  limitToSupport(l, s, weight_ / std::max(1, stanceLegs_), torques);
 }
 
 void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vector3d& velocityH,
@@ -223,7 +234,12 @@ void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vect
 
   // Foot placement (§3.1.6): P1 = P_lf + (v − v_d)·s, re-evaluated every step (defect 8), on the
   // ground under it (defect 7: ray cast, not a constant).
-  const Vector3d nominal = nominalFootOffset(g.side, p.stepSideways, p.stepForward);
+  // The thesis's nominal offset is a constant, which suits one speed only: with v = v_d the
+  // foot would land the same distance ahead at 0.3 m/s and at 1.5 m/s. It grows here with the
+  // desired velocity (footPlacementLead), so that (v − v_d)·s is feedback around a placement
+  // that already fits the speed asked for.
+  const Vector3d nominal = nominalFootOffset(g.side, p.stepSideways, p.stepForward) +
+                           p.footPlacementLead * desiredVelocity_;
   Vector3d p1 = footPlacementTarget(frame.position, yaw, nominal, velocityH, desiredVelocity_,
                                     p.footPlacementScale, 0.0);
   p1.y() = s.ground.at(p1.x(), p1.z());
@@ -256,7 +272,7 @@ void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vect
   accumulateGravityCompensation(chain, loads, 3, gravity_, torques, n);
 
   // Foot: level during swing, to the strike angle after the strike time (§3.1.6).
-  footPd(l, s, yaw, phi > lp.strikeTime ? p.strikeAngle : 0.0, 0.5, torques);
+  footPd(l, s, yaw, phi > lp.strikeTime ? p.strikeAngle : 0.0, k.ankleKp, k.ankleKd, torques);
 }
 
 int Controller::legFrameIndex(const body::Leg& leg) const {
@@ -300,14 +316,29 @@ void Controller::kneePd(int l, const CharacterState& s, double flexionWanted, Ve
   torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, flexionWanted - flexion, -rate) * axis;
 }
 
-void Controller::footPd(int l, const CharacterState& s, double yaw, double pitch, double gainScale,
-                        Vector3d* torques) {
+void Controller::footPd(int l, const CharacterState& s, double yaw, double pitch, double kp,
+                        double kd, Vector3d* torques) {
   const body::Leg& leg = m_.legs[l];
   const BodyState& shin = s.segments[leg.lower];
   const BodyState& foot = s.segments[leg.foot];
   const Quaterniond wanted = headingQuat(yaw) * Quaterniond(Eigen::AngleAxisd(pitch, Vector3d::UnitX()));
-  torques[leg.foot] += orientationPd(params_.gains.ankleKp * gainScale, params_.gains.ankleKd * gainScale,
-                                     foot.orientation, wanted, foot.angularVelocity, shin.angularVelocity);
+  torques[leg.foot] += orientationPd(kp, kd, foot.orientation, wanted, foot.angularVelocity,
+                                     shin.angularVelocity);
+}
+
+void Controller::limitToSupport(int l, const CharacterState& s, double load, Vector3d* torques) const {
+  // A flat foot carrying `load` newtons stays flat while the centre of pressure that balances
+  // the ankle torque lies under the sole: pitch torque within load × toe (toes pressed down, +x)
+  // and load × heel (−x), roll within load × half the width, twist within what friction holds
+  // (taken as load × a quarter of the width). Clamped in the foot's own frame.
+  const body::Leg& leg = m_.legs[l];
+  const LegGeometry& g = geometry_[l];
+  const Quaterniond& q = s.segments[leg.foot].orientation;
+  Vector3d local = q.conjugate() * torques[leg.foot];
+  local.x() = std::clamp(local.x(), -load * g.heel, load * g.toe);
+  local.y() = std::clamp(local.y(), -0.25 * load * g.halfWidth, 0.25 * load * g.halfWidth);
+  local.z() = std::clamp(local.z(), -load * g.halfWidth, load * g.halfWidth);
+  torques[leg.foot] = q * local;
 }
 
 void Controller::spine(const CharacterState& s, Vector3d* torques) {

@@ -62,6 +62,9 @@ class Controller {
     double thigh, shin;          // hip→knee, knee→ankle lengths
     double ankleHeight;          // ankle pivot above the sole
     double side;                 // +1 left (+x), −1 right
+    // The sole around the ankle, in the foot's frame: how far the centre of pressure can move
+    // before the foot tips (toe and heel along +z/−z, half the width along x).
+    double toe, heel, halfWidth;
   };
 
   void stanceLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& force,
@@ -72,8 +75,9 @@ class Controller {
   Eigen::Vector3d jointPivot(int segment, const CharacterState& s) const;  // world, now
   DofChain legChain(int leg, const CharacterState& s) const;
   void kneePd(int leg, const CharacterState& s, double flexionWanted, Eigen::Vector3d* torques);
-  void footPd(int leg, const CharacterState& s, double yaw, double pitch, double gainScale,
+  void footPd(int leg, const CharacterState& s, double yaw, double pitch, double kp, double kd,
               Eigen::Vector3d* torques);
+  void limitToSupport(int leg, const CharacterState& s, double load, Eigen::Vector3d* torques) const;
   void spine(const CharacterState& s, Eigen::Vector3d* torques);
 
   const body::Morphology& m_;
@@ -85,6 +89,8 @@ class Controller {
   double desiredHeading_;
   Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gravity_{0, -9.81, 0};
+  double weight_ = 0;  // N, the whole character's
+  int stanceLegs_ = 0;  // this step
 };
 
 }  // namespace gaitlab::gait

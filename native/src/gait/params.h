@@ -20,6 +20,7 @@ struct LegFrameParams {
   double velocityGain = 0;            // K_v of F_v = K_v (v_d − v) (eq. 3.6), N·s/m
   double fd[4] = {0, 0, 0, 0};        // c0..c3 of F_D(D) (eq. 3.8)
   double footPlacementScale = 0;      // s of P1 = P_lf + (v − v_d)·s (§3.1.6), seconds
+  double footPlacementLead = 0;       // s: the nominal offset grows by v_d × this
   double stepSideways = 0;            // nominal foot offset from the leg frame's centre, m
   double stepForward = 0;             // m
   double toeOffAngle = 0;             // foot pitch at lift-off, rad (+ = toes down)

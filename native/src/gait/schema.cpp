@@ -159,6 +159,10 @@ Table build(Character c) {
     scalar(n + "footPlacementScale", kFootPlacement, {0, 1}, "s",
            "s of P1 = P_lf + (v − v_d)·s: velocity feedback on the strike point (§3.1.6)",
            f.footPlacementScale);
+    scalar(n + "footPlacementLead", kFootPlacement, {0, 1}, "s",
+           "the nominal strike point moves ahead by v_d × this: at the goal speed the foot lands "
+           "where the step carries the body over it, not under the leg frame",
+           f.footPlacementLead);
     scalar(n + "stepSideways", kFootPlacement, {0, 0.3}, "m",
            "nominal strike point's sideways offset from the leg frame's centre", f.stepSideways);
     scalar(n + "stepForward", kFootPlacement, {-0.3, 0.3}, "m",

@@ -77,10 +77,7 @@ const char* kUsage =
     "  --version    print the version and exit\n"
     "  --help       print this help and exit\n";
 
-int usageError(const std::string& message) {
-  std::fprintf(stderr, "gaitlab: %s (see gaitlab --help)\n", message.c_str());
-  return 2;
-}
+int usageError(const std::string& message) { return api::usageError("", message); }
 
 
 // --character, when given, must name a character.

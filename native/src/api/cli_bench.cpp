@@ -43,10 +43,7 @@ const char* kBenchUsage =
     "  --csv                         print one CSV row per point\n"
     "Progress goes to stderr.\n";
 
-int benchError(const std::string& message) {
-  std::fprintf(stderr, "gaitlab bench: %s (see gaitlab bench --help)\n", message.c_str());
-  return 2;
-}
+int benchError(const std::string& message) { return usageError("bench", message); }
 
 bool parseInt(const std::string& s, long lo, long hi, long* out) {
   char* end = nullptr;

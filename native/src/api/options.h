@@ -2,6 +2,7 @@
 // checked to be finite and within bounds, and errors that name the option.
 #pragma once
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -9,6 +10,14 @@
 #include <string>
 
 namespace gaitlab::api {
+
+// A refused command line: "gaitlab[ COMMAND]: MESSAGE (see gaitlab[ COMMAND] --help)" on stderr,
+// exit status 2. `command` is empty for the top level.
+inline int usageError(const std::string& command, const std::string& message) {
+  const std::string name = command.empty() ? "gaitlab" : "gaitlab " + command;
+  std::fprintf(stderr, "%s: %s (see %s --help)\n", name.c_str(), message.c_str(), name.c_str());
+  return 2;
+}
 
 // "--name value" and "--flag" options; refuses anything not in `valued` or `flags`.
 struct Options {

@@ -114,8 +114,9 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   player_.update(dt, s.footContact);
   const double phase = player_.phase();
 
-  stanceLegs_ = 0;
-  for (int l = 0; l < player_.legCount(); ++l) stanceLegs_ += player_.leg(l).stance ? 1 : 0;
+  int stanceLegs = 0;
+  for (int l = 0; l < player_.legCount(); ++l) stanceLegs += player_.leg(l).stance ? 1 : 0;
+  const double stanceLoad = weight_ / std::max(1, stanceLegs);  // N per stance leg
 
   if (!m_.spine.empty()) spine(s, torques);
 
@@ -145,7 +146,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
         const BodyState& foot = s.segments[leg.foot];
         const double d = footProgress(frame.position, foot.position, yaw);
         const PhaseForceCoefficients c{p.fd[0], p.fd[1], p.fd[2], p.fd[3]};
-        stanceLeg(li, s, yaw, (fh + fv) / stance + phaseForce(c, d, yaw), torques);
+        stanceLeg(li, s, yaw, (fh + fv) / stance + phaseForce(c, d, yaw), stanceLoad, torques);
       } else {
         swingLeg(li, s, yaw, velocityH, torques);
       }
@@ -188,7 +189,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
 }
 
 void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vector3d& force,
-                           Vector3d* torques) {
+                           double load, Vector3d* torques) {
   const body::Leg& leg = m_.legs[l];
 
   // The virtual force F wanted on the leg frame (§3.1.4, Figure 3.4), by the Jacobian
@@ -215,7 +216,7 @@ void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vec
   const LegFrameParams& fp = params_.legFrames[legFrameIndex(leg)];
   const double pitch = player_.leg(l).progress > lp.toeOffTime ? fp.toeOffAngle : 0.0;
   footPd(l, s, yaw, pitch, params_.gains.stanceAnkleKp, params_.gains.stanceAnkleKd, torques);
-  limitToSupport(l, s, weight_ / std::max(1, stanceLegs_), torques);
+  limitToSupport(l, s, load, torques);
 }
 
 void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vector3d& velocityH,

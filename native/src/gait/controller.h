@@ -67,8 +67,9 @@ class Controller {
     double toe, heel, halfWidth;
   };
 
+  // `load`: the weight this stance leg carries (N), for the support limit of its ankle.
   void stanceLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& force,
-                 Eigen::Vector3d* torques);
+                 double load, Eigen::Vector3d* torques);
   void swingLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& velocity,
                 Eigen::Vector3d* torques);
   int legFrameIndex(const body::Leg& leg) const;  // 0 front/only, 1 back
@@ -90,7 +91,6 @@ class Controller {
   Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gravity_{0, -9.81, 0};
   double weight_ = 0;  // N, the whole character's
-  int stanceLegs_ = 0;  // this step
 };
 
 }  // namespace gaitlab::gait

@@ -82,13 +82,36 @@ function gaitlabWasm(): Plugin {
   };
 }
 
+/**
+ * coi-serviceworker (from node_modules) at the site root, for static hosts that cannot send
+ * COOP/COEP: the page loads it first (index.html); when the page is not cross-origin isolated it
+ * installs itself as a service worker that adds the headers to every response, and reloads once.
+ * With the headers already present (npm start) it does nothing.
+ */
+function coiServiceWorker(): Plugin {
+  const file = path.join(repoDir, 'node_modules', 'coi-serviceworker', 'coi-serviceworker.min.js');
+  const name = 'coi-serviceworker.js';
+  return {
+    name: 'gaitlab-coi-serviceworker',
+    configureServer(server) {
+      server.middlewares.use(`/${name}`, (_req, res) => {
+        res.writeHead(200, { 'Content-Type': 'text/javascript; charset=utf-8', 'Cache-Control': 'no-cache', ...isolationHeaders });
+        fs.createReadStream(file).pipe(res);
+      });
+    },
+    generateBundle() {
+      this.emitFile({ type: 'asset', fileName: name, source: fs.readFileSync(file) });
+    },
+  };
+}
+
 export default defineConfig({
   root: webDir,
   publicDir: path.join(repoDir, 'public'),
   // Several HTML entry points (index.html now, bench.html later); no SPA fallback, so a missing
   // file is a 404 instead of the demo page.
   appType: 'mpa',
-  plugins: [gaitlabWasm()],
+  plugins: [gaitlabWasm(), coiServiceWorker()],
   server: { headers: isolationHeaders },
   preview: { headers: isolationHeaders },
   worker: {

@@ -44,6 +44,46 @@ async function openPage(url) {
 
 const stats = (page) => page.evaluate(() => window.gaitlab.stats());
 
+/** Waits until the page has drawn a simulated frame (or shows a problem), and checks it is fine. */
+async function ready(page) {
+  await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null, {
+    timeout: PAGE_TIMEOUT,
+    polling: 250,
+  });
+  const s = await stats(page);
+  assert.equal(s.error, null, 'no problem is shown on the page');
+  return s;
+}
+
+/** Waits for the worker's next report (4 a second) so characters() is current. */
+async function freshCharacters(page) {
+  const before = await page.evaluate(() => window.gaitlab.stats().simTime);
+  await page.waitForFunction((t) => window.gaitlab.stats().simTime !== t, before, { timeout: PAGE_TIMEOUT, polling: 100 });
+  await page.waitForTimeout(600);
+  return page.evaluate(() => window.gaitlab.characters());
+}
+
+/** Steps a page that was opened with ?paused=1 and waits until its report shows the steps. */
+async function stepTo(page, steps) {
+  const target = steps / 120;
+  await page.evaluate((n) => window.gaitlab.step(n), steps);
+  await page.waitForFunction((t) => Math.abs(window.gaitlab.stats().simTime - t) < 1e-6, target, { timeout: PAGE_TIMEOUT, polling: 100 });
+  // The statistics report after the step carries the characters.
+  await page.waitForTimeout(700);
+  return page.evaluate(() => window.gaitlab.characters());
+}
+
+const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+
+/** Skips a test that needs the parameter schema when this build of the module has none. */
+async function needsSchema(t, page) {
+  if ((await stats(page)).gaits) return false;
+  t.skip('this build of the WASM module has no parameter schema yet (gl_schema_json)');
+  await page.close();
+  return true;
+}
+
+
 /** Distinct colours (4 bits per channel) in a PNG, decoded by the browser itself. */
 async function distinctColours(page, png) {
   return page.evaluate(async (base64) => {
@@ -83,7 +123,7 @@ function startStrippingProxy(target) {
   });
 }
 
-describe('demo page', { timeout: TEST_TIMEOUT * 3 }, () => {
+describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
   before(async () => {
     for (const file of ['gaitlab.mjs', 'gaitlab.wasm', 'gaitlab.worker.js']) {
       assert.ok(fs.existsSync(path.join(repoDir, 'build', 'wasm', file)), `build/wasm/${file} exists (run npm run build)`);
@@ -114,19 +154,17 @@ describe('demo page', { timeout: TEST_TIMEOUT * 3 }, () => {
     if (profileDir) fs.rmSync(profileDir, { recursive: true, force: true });
   });
 
-  it('simulates and draws the demo scene', { timeout: TEST_TIMEOUT }, async () => {
+  it('runs a mixed crowd, draws it in a constant number of draw calls, pauses, steps and resets', { timeout: TEST_TIMEOUT }, async () => {
     const { page, problems } = await openPage(server.url);
-
     assert.equal(await page.evaluate(() => window.crossOriginIsolated), true, 'the page is cross-origin isolated');
-    await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null, {
-      timeout: PAGE_TIMEOUT,
-      polling: 250,
-    });
-    const first = await stats(page);
-    assert.equal(first.error, null, 'no problem is shown on the page');
+    const first = await ready(page);
     assert.equal(first.crossOriginIsolated, true);
-    assert.ok(first.bodies > 0, `bodies are drawn (${first.bodies})`);
+    assert.equal(first.isolation, 'headers');
     assert.ok(first.threads >= 1, `the simulation has threads (${first.threads})`);
+    const crowd = await freshCharacters(page);
+    assert.equal(crowd.length, 24, 'a crowd of 24 by default');
+    assert.equal(crowd.filter((c) => c.type === 'biped').length, 12, 'a dozen bipeds');
+    assert.equal(crowd.filter((c) => c.type === 'quadruped').length, 12, 'a dozen quadrupeds');
 
     // Simulated time advances: in real time on a desktop, slower on a loaded 2-core machine
     // rendering in software, so the bounds only rule out standing still and running ahead.
@@ -135,27 +173,40 @@ describe('demo page', { timeout: TEST_TIMEOUT * 3 }, () => {
     const advanced = later.simTime - first.simTime;
     assert.ok(advanced > 0.5, `simulated time advanced by ${advanced.toFixed(2)} s in 4 s of wall time`);
     assert.ok(later.realtimeFactor > 0.1 && later.realtimeFactor < 1.5, `real-time factor ${later.realtimeFactor.toFixed(2)}`);
-    console.log(`demo: ${later.bodies} bodies, ${later.threads} threads, ${later.fps.toFixed(1)} FPS, real-time factor ${later.realtimeFactor.toFixed(2)}`);
     assert.ok(later.fps > 0, `frames are drawn (${later.fps.toFixed(1)} FPS)`);
+    assert.ok(later.drawCalls > 0, `draw calls are counted (${later.drawCalls})`);
+    console.log(`demo: ${later.characters} characters, ${later.bodies} bodies, ${later.threads} threads, ${later.fps.toFixed(1)} FPS, ` +
+      `real-time factor ${later.realtimeFactor.toFixed(2)}, ${later.drawCalls} draw calls`);
+    assert.match(await page.getByTestId('hud').innerText(), /FPS · .* · 24 characters.* · \d+ threads? · multi-threaded .* · \d+ draw calls/);
 
     const png = await page.screenshot({ path: path.join(resultsDir, 'demo.png') });
     const colours = await distinctColours(page, png);
     assert.ok(colours >= 8, `the canvas is not blank (${colours} distinct colours)`);
 
-    // Pause stops simulated time; resume restarts it.
+    // More characters, same draw calls: everything is one instanced mesh.
+    await page.getByRole('button', { name: 'Add characters' }).click();
+    await page.getByRole('button', { name: 'Add characters' }).click();
+    await page.waitForFunction(() => window.gaitlab.stats().characters === 26, null, { timeout: PAGE_TIMEOUT });
+    await page.waitForTimeout(500);
+    assert.equal((await stats(page)).drawCalls, later.drawCalls, 'draw calls do not grow with the number of characters');
+
+    // Pause stops simulated time; single steps advance it by 1/120 s; resume restarts it.
     await page.getByRole('button', { name: 'Pause' }).click();
     await page.waitForFunction(() => window.gaitlab.stats().paused, null, { timeout: PAGE_TIMEOUT });
     await page.getByRole('button', { name: 'Resume' }).waitFor({ timeout: PAGE_TIMEOUT });
     await page.waitForTimeout(1000); // the worker's last frame reaches the screen
     const pausedAt = (await stats(page)).simTime;
-    await page.waitForTimeout(1500);
+    await page.waitForTimeout(1000);
     assert.equal((await stats(page)).simTime, pausedAt, 'simulated time stands still while paused');
+    await page.getByRole('button', { name: 'Step' }).click();
+    await page.waitForFunction((t) => window.gaitlab.stats().simTime > t, pausedAt, { timeout: PAGE_TIMEOUT });
+    assert.ok(Math.abs((await stats(page)).simTime - pausedAt - 1 / 120) < 1e-9, 'one step is 1/120 s');
     await page.getByRole('button', { name: 'Resume' }).click();
     await page.waitForFunction((t) => window.gaitlab.stats().simTime > t + 0.2, pausedAt, { timeout: PAGE_TIMEOUT });
 
     // Reset builds a new scene from the start: simulated time goes back to (nearly) 0.
     const beforeReset = (await stats(page)).simTime;
-    await page.getByRole('button', { name: 'Reset' }).click();
+    await page.getByRole('button', { name: 'Reset', exact: true }).click();
     await page.waitForFunction((t) => window.gaitlab.stats().simTime < t, beforeReset, { timeout: PAGE_TIMEOUT });
     assert.ok((await stats(page)).bodies > 0, 'the new scene is drawn');
 
@@ -163,23 +214,256 @@ describe('demo page', { timeout: TEST_TIMEOUT * 3 }, () => {
     await page.close();
   });
 
-  it('explains itself instead of a blank page when served without isolation headers', { timeout: TEST_TIMEOUT }, async () => {
+  // Needs characters that walk (the controller issue). Until the controller keeps them upright
+  // this fails, and says so: it is the demo's first promise.
+  it('the crowd walks: every character advances and none has fallen after 10 s', { timeout: TEST_TIMEOUT }, async () => {
+    const { page, problems } = await openPage(server.url);
+    await ready(page);
+    const start = await freshCharacters(page);
+    await page.waitForFunction(() => window.gaitlab.stats().simTime >= 10.5, null, { timeout: PAGE_TIMEOUT, polling: 500 });
+    const end = await freshCharacters(page);
+    const fallen = end.filter((c) => c.fallen).map((c) => `${c.type} #${c.id}`);
+    const stuck = end
+      .filter((c) => {
+        const s = start.find((x) => x.id === c.id);
+        return Math.hypot(c.position[0] - s.position[0], c.position[2] - s.position[2]) < 2;
+      })
+      .map((c) => `${c.type} #${c.id}`);
+    assert.deepEqual(fallen, [], `characters fallen after 10 s: ${fallen.length} of ${end.length}`);
+    assert.deepEqual(stuck, [], 'every character walked at least 2 m in 10 s');
+    assert.deepEqual(problems, [], 'no page errors');
+    await page.close();
+  });
+
+  it('a thrown box hits a character and changes its motion; the crowd keeps running', { timeout: TEST_TIMEOUT }, async () => {
+    // The same run from step 0 twice (the simulation is deterministic and Reset rebuilds the
+    // scene from the same seed), the second time with a box thrown at a character.
+    const { page, problems } = await openPage(`${server.url}?characters=4&paused=1`);
+    const s = await ready(page);
+    assert.equal(s.paused, true);
+    const quiet = await stepTo(page, 150);
+    assert.equal(quiet.length, 4);
+
+    await page.getByRole('button', { name: 'Reset', exact: true }).click();
+    await page.waitForFunction(() => window.gaitlab.stats().simTime === 0, null, { timeout: PAGE_TIMEOUT });
+    await page.waitForTimeout(700);
+    const start = await page.evaluate(() => window.gaitlab.characters());
+    const bodies = (await stats(page)).bodies;
+    await page.evaluate((p) => window.gaitlab.throwBox([p[0], p[1] + 0.2, p[2]]), start[0].position);
+    await page.waitForFunction((n) => window.gaitlab.stats().bodies === n + 1, bodies, { timeout: PAGE_TIMEOUT });
+    const hit = await stepTo(page, 150);
+
+    const moved = dist(hit[0].position, quiet[0].position);
+    assert.ok(moved > 0.05, `the character hit moved differently (by ${moved.toFixed(3)} m)`);
+    const untouched = hit.filter((c, i) => dist(c.position, quiet[i].position) === 0);
+    assert.ok(untouched.length >= 1, 'characters the box missed moved exactly as without it (determinism)');
+    await page.screenshot({ path: path.join(resultsDir, 'box-thrown.png') });
+    // The crowd keeps running.
+    await page.evaluate(() => window.gaitlab.resume());
+    await page.waitForFunction(() => window.gaitlab.stats().simTime > 1.8, null, { timeout: PAGE_TIMEOUT });
+    assert.equal((await stats(page)).error, null);
+    assert.deepEqual(problems, [], 'no page errors');
+    await page.close();
+  });
+
+  it('clicks select characters and throw boxes; dragging a body pulls it', { timeout: TEST_TIMEOUT }, async () => {
+    const { page, problems } = await openPage(`${server.url}?characters=4&paused=1`);
+    await ready(page);
+    await page.waitForTimeout(500); // the first frame is framed by the camera
+    const at = (id) => page.evaluate((i) => window.gaitlab.screenPosition(i), id);
+
+    // Click a character: it is selected.
+    const p1 = await at(1);
+    await page.mouse.click(p1.x, p1.y);
+    await page.waitForFunction(() => window.gaitlab.stats().selected === 1, null, { timeout: PAGE_TIMEOUT });
+    assert.match(await page.getByTestId('hud').innerText(), /selected: quadruped #1/);
+
+    // Click the ground (the bottom left corner of the view, away from the crowd): a box flies.
+    const bodies = (await stats(page)).bodies;
+    await page.mouse.click(60, 600);
+    await page.waitForFunction((n) => window.gaitlab.stats().bodies === n + 1, bodies, { timeout: PAGE_TIMEOUT });
+
+    // Drag the biped #0's pelvis upwards and hold it while the simulation steps: it stays up,
+    // while biped #2, untouched and not walking yet, sinks (or, walking, stays at its height).
+    const p0 = await at(0);
+    await page.mouse.move(p0.x, p0.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 6; k++) await page.mouse.move(p0.x, p0.y - 25 * k);
+    const after = await stepTo(page, 90);
+    await page.screenshot({ path: path.join(resultsDir, 'drag.png') });
+    await page.mouse.up();
+    const y0 = after.find((c) => c.id === 0).position[1];
+    const y2 = after.find((c) => c.id === 2).position[1];
+    assert.ok(y0 > y2 + 0.2, `the dragged biped was pulled up (${y0.toFixed(2)} m against ${y2.toFixed(2)} m)`);
+    assert.equal((await stats(page)).selected, 1, 'a drag does not change the selection');
+    assert.deepEqual(problems, [], 'no page errors');
+    await page.close();
+  });
+
+  it('dragging a curve knot changes the running gait; a share link reproduces it; export then import gives it back', { timeout: TEST_TIMEOUT }, async (t) => {
+    const { page, problems } = await openPage(`${server.url}?characters=2`);
+    await ready(page);
+    if (await needsSchema(t, page)) return;
+    await page.evaluate(() => window.gaitlab.select(0));
+    const canvas = page.locator('.curve-editor canvas').first();
+    await canvas.waitFor({ timeout: PAGE_TIMEOUT });
+    const name = await page.locator('.curve-editor').first().getAttribute('data-param');
+    const before = await page.evaluate(() => window.gaitlab.getGait(0));
+    // Press at knot 2 (φ = 1/3) and drag it to the top of the editor: the schema's maximum.
+    const box = await canvas.boundingBox();
+    const x = box.x + box.width * ((8 + (324 * 1) / 3) / 340);
+    await page.mouse.move(x, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(x, box.y + 2, { steps: 5 });
+    await page.mouse.up();
+    await page.waitForTimeout(1000);
+    const after = await page.evaluate(() => window.gaitlab.getGait(0));
+    assert.notDeepEqual(after.params[name], before.params[name], `${name} changed in the running simulation`);
+    assert.deepEqual(after.params[name].filter((_, k) => k !== 1), before.params[name].filter((_, k) => k !== 1), 'only knot 2 moved');
+    await page.locator('.editors').screenshot({ path: path.join(resultsDir, 'editors.png') });
+    await page.screenshot({ path: path.join(resultsDir, 'demo-editing.png') });
+
+    // Share: a new page opened with the link runs every biped with exactly these parameters.
+    const url = await page.evaluate(() => window.gaitlab.shareUrl(0));
+    assert.match(url, /#gait=1\.\d+\.[A-Za-z0-9_-]+$/);
+    const shared = await openPage(url);
+    await ready(shared.page);
+    await shared.page.waitForTimeout(1500);
+    const bipedId = (await shared.page.evaluate(() => window.gaitlab.characters())).find((c) => c.type === 'biped').id;
+    const received = await shared.page.evaluate((id) => window.gaitlab.getGait(id), bipedId);
+    assert.deepEqual(received.params, after.params, 'the link reproduces the parameters exactly');
+    assert.match(await shared.page.getByRole('status').innerText(), /gait loaded from the link/);
+    assert.deepEqual(shared.problems, [], 'no page errors on the shared page');
+    await shared.page.close();
+
+    // Export, reset to the preset, import: the exported parameters are back.
+    const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Export JSON' }).click()]);
+    const file = path.join(resultsDir, 'exported-gait.json');
+    await download.saveAs(file);
+    const exported = JSON.parse(fs.readFileSync(file, 'utf8'));
+    assert.equal(exported.format, 'gaitlab-gait');
+    assert.deepEqual(exported.params, after.params);
+    await page.getByRole('button', { name: 'Reset to preset' }).click();
+    await page.waitForTimeout(1000);
+    assert.notDeepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params[name], after.params[name], 'reset to preset');
+    const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.getByRole('button', { name: 'Import JSON' }).click()]);
+    await chooser.setFiles(file);
+    await page.waitForTimeout(1000);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, after.params, 'import gives the exported gait back');
+    assert.deepEqual(problems, [], 'no page errors');
+    await page.close();
+  });
+
+  it('refuses each kind of bad link with its message and runs with the presets', { timeout: TEST_TIMEOUT }, async (t) => {
+    const { page } = await openPage(`${server.url}?characters=2`);
+    await ready(page);
+    if (await needsSchema(t, page)) return;
+    // Links made in the page with its own codec (Vite serves the TypeScript module).
+    const links = await page.evaluate(async () => {
+      const link = await import('/src/share/link.ts');
+      const gait = await window.gaitlab.getGait(0);
+      const good = (await link.encodeGaitHash(gait)).slice(1);
+      const scalar = Object.keys(gait.params).find((k) => typeof gait.params[k] === 'number');
+      const outOfBounds = (await link.encodeGaitHash({ ...gait, params: { ...gait.params, [scalar]: 1e9 } })).slice(1);
+      // JSON cannot say Infinity, but 1e999 reads as Infinity: build that link by hand.
+      const json = JSON.stringify({ ...gait, params: { ...gait.params, [scalar]: 12345.5 } }).replace('12345.5', '1e999');
+      const text = new TextEncoder().encode(json);
+      const packed = new Uint8Array(await new Response(new Blob([text]).stream().pipeThrough(new CompressionStream('deflate-raw'))).arrayBuffer());
+      const bytes = new Uint8Array(4 + packed.length);
+      new DataView(bytes.buffer).setUint32(0, link.crc32(text));
+      bytes.set(packed, 4);
+      const data = link.toBase64Url(bytes);
+      const dataStart = good.lastIndexOf('.') + 1;
+      const flip = dataStart + 10;
+      return {
+        truncated: good.slice(0, good.length - 7),
+        corrupt: good.slice(0, flip) + (good[flip] === 'A' ? 'B' : 'A') + good.slice(flip + 1),
+        tooLong: `gait=1.9000.${'A'.repeat(9000)}`,
+        unknownVersion: good.replace(/^gait=1\./, 'gait=7.'),
+        outOfBounds,
+        notFinite: `gait=1.${data.length}.${data}`,
+      };
+    });
+    await page.close();
+    const expected = {
+      truncated: /truncated/,
+      corrupt: /damaged|not a JSON gait/,
+      tooLong: /at most \d+ are accepted/,
+      unknownVersion: /format version 7/,
+      outOfBounds: /out of bounds/,
+      notFinite: /not a finite number/,
+    };
+    // The first kind on a fresh page (a link opened in a new tab), the others by changing the
+    // hash of that page (a link pasted into the address bar of an open page).
+    const kinds = Object.keys(links);
+    const { page: bad, problems } = await openPage(`${server.url}?characters=2#${links[kinds[0]]}`);
+    await ready(bad);
+    for (const [n, kind] of kinds.entries()) {
+      if (n > 0) await bad.evaluate((hash) => (location.hash = hash), links[kind]);
+      const message = bad.getByRole('status').locator('.message-problem').nth(n);
+      await message.waitFor({ timeout: PAGE_TIMEOUT });
+      const text = await message.innerText();
+      assert.match(text, /The gait link was refused/, kind);
+      assert.match(text, expected[kind], `${kind}: ${text}`);
+      assert.match(text, /Running with the presets/);
+      if (kind === 'corrupt') await bad.screenshot({ path: path.join(resultsDir, 'bad-link.png') });
+    }
+    // The page still runs, with the presets.
+    const t0 = (await stats(bad)).simTime;
+    await bad.waitForFunction((t) => window.gaitlab.stats().simTime > t + 0.2, t0, { timeout: PAGE_TIMEOUT });
+    const [running, preset] = await bad.evaluate(() => Promise.all([window.gaitlab.getGait(0), window.gaitlab.presetGait('biped')]));
+    assert.deepEqual(running.params, preset.params, 'biped #0 runs with the preset');
+    assert.deepEqual(problems, [], 'no page errors');
+    await bad.close();
+  });
+
+  it('runs from a static host without isolation headers, through the service worker, and says so', { timeout: TEST_TIMEOUT }, async () => {
     const proxy = await startStrippingProxy(server.url);
     try {
-      const { page, problems } = await openPage(proxy.url);
+      const { page, problems } = await openPage(`${proxy.url}?characters=2`);
+      // The first load installs coi-serviceworker and reloads itself once.
+      await page.waitForFunction(() => window.crossOriginIsolated === true, null, { timeout: PAGE_TIMEOUT, polling: 250 });
+      const s = await ready(page);
+      assert.equal(s.isolation, 'service worker');
+      assert.match(await page.getByTestId('hud').innerText(), /isolated by service worker/);
+      await page.screenshot({ path: path.join(resultsDir, 'service-worker.png') });
+      // Messages from before the reload (the page telling what it does) are not errors.
+      assert.deepEqual(problems.filter((p) => !p.includes('net::ERR_ABORTED')), [], 'no page errors');
+      await page.close();
+    } finally {
+      await proxy.close();
+    }
+  });
+
+  it('explains itself instead of a blank page when neither headers nor a service worker isolate it', { timeout: TEST_TIMEOUT }, async () => {
+    const proxy = await startStrippingProxy(server.url);
+    // A plain-http host by name: not a secure context, so no service worker may be installed
+    // (a static site on http://, as opposed to localhost or https).
+    const browser = await chromium.launch({
+      executablePath,
+      headless: true,
+      args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--host-resolver-rules=MAP gaitlab.test 127.0.0.1'],
+    });
+    try {
+      const page = await browser.newPage({ viewport: { width: 1024, height: 640 } });
+      const problems = [];
+      page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+      await page.goto(proxy.url.replace('127.0.0.1', 'gaitlab.test'), { waitUntil: 'load', timeout: PAGE_TIMEOUT });
+      assert.equal(await page.evaluate(() => window.isSecureContext), false);
       assert.equal(await page.evaluate(() => window.crossOriginIsolated), false);
       const notice = page.getByRole('alert');
       await notice.waitFor({ state: 'visible', timeout: PAGE_TIMEOUT });
       const text = await notice.innerText();
       assert.match(text, /Cross-Origin-Opener-Policy/);
+      assert.match(text, /service worker/);
       assert.match(text, /npm start/);
       const hook = await stats(page);
       assert.equal(hook.crossOriginIsolated, false);
       assert.equal(hook.ready, false);
       await page.screenshot({ path: path.join(resultsDir, 'not-isolated.png') });
       assert.deepEqual(problems, [], 'no page errors');
-      await page.close();
     } finally {
+      await browser.close();
       await proxy.close();
     }
   });

@@ -40,6 +40,12 @@ describe('simOptionsFromQuery', () => {
     expect(simOptionsFromQuery(`?threads=${MAX_THREADS}`, defaults).threads).toBe(MAX_THREADS);
   });
 
+  it('starts paused only with paused=1', () => {
+    expect(simOptionsFromQuery('?paused=1', defaults).paused).toBe(true);
+    expect(simOptionsFromQuery('?paused=yes', defaults).paused).toBeUndefined();
+    expect(simOptionsFromQuery('', defaults).paused).toBeUndefined();
+  });
+
   it('never takes the module URL from the query', () => {
     expect(simOptionsFromQuery('?wasmUrl=https://example.com/x.mjs', defaults).wasmUrl).toBe(defaults.wasmUrl);
   });

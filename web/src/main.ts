@@ -1,60 +1,117 @@
-// The demo page: a sim worker simulates the demo scene in real time; this main thread only draws
-// it, reading the newest transforms out of shared WASM memory each animation frame (DESIGN.md,
-// data flow steps 2–3), and shows what it is doing.
+// The demo page: a sim worker simulates a crowd in real time; this main thread draws it, reading
+// the newest transforms out of shared WASM memory each animation frame (DESIGN.md, data flow
+// steps 2–3), and turns clicks, drags, keys and the control panel into commands for the worker
+// (data flow step 1).
 import './style.css';
 import * as THREE from 'three';
 import { CrowdMesh } from './render/crowd-mesh';
+import { PointerInteraction, SelectionRing } from './render/pointer';
 import { Stage } from './render/stage';
-import { defaultThreads, errorMessage, simOptionsFromQuery } from './sim/protocol';
+import {
+  defaultThreads,
+  errorMessage,
+  simOptionsFromQuery,
+  type CharacterStatus,
+  type SceneCommand,
+  type TimeScale,
+  type Vec3,
+} from './sim/protocol';
 import { SimClient } from './sim/sim-client';
+import { ControlPanel } from './ui/control-panel';
+import { GaitSession } from './ui/gait-session';
 import { Overlay } from './ui/overlay';
 import { RateMeter } from './ui/rate-meter';
+import type { GaitFile } from './share/gait-file';
 
-/** What `window.gaitlab.stats()` returns: the read-only test hook (DESIGN.md, contracts). */
+/** What `window.gaitlab.stats()` returns (the read-only test hook, DESIGN.md contracts). */
 export interface GaitlabStats {
+  characters: number;
+  fallen: number;
   /** Simulated seconds of the frame on screen. */
   simTime: number;
   /** Simulated seconds per wall-clock second, smoothed (1 = real time). */
   realtimeFactor: number;
   /** Rendered frames per second, smoothed. */
   fps: number;
+  threads: number;
+  crossOriginIsolated: boolean;
+  /** WebGL draw calls of the last frame (shadow pass included): constant in the crowd's size. */
+  drawCalls: number;
+  /** How the page got its threads: 'headers', 'service worker' or 'none'. */
+  isolation: string;
   /** Bodies in the frame on screen. */
   bodies: number;
-  /** Threads of the simulation (0 until it exists). */
-  threads: number;
-  /** The sim worker has confirmed a pause. */
   paused: boolean;
-  crossOriginIsolated: boolean;
+  timeScale: TimeScale;
   /** True once a simulated frame has been drawn. */
   ready: boolean;
   /** The problem shown on the page, if any. */
   error: string | null;
+  /** Whether this build has the parameter schema (gait editing and sharing). */
+  gaits: boolean;
+  selected: number | null;
+}
+
+export interface GaitlabHook {
+  stats(): GaitlabStats;
+  characters(): CharacterStatus[];
+  getGait(id: number): Promise<GaitFile>;
+  shareUrl(id: number): Promise<string>;
+  /** The preset gait of a type, as the module has it. */
+  presetGait(type: 'biped' | 'quadruped'): Promise<GaitFile>;
+  throwBox(target: Vec3): void;
+  setGoal(id: number | 'all', goal: { speed: number; turn: number }): void;
+  select(id: number | null): void;
+  /** `count` fixed steps while paused. */
+  step(count: number): void;
+  pause(): void;
+  resume(): void;
+  /** Screen position (CSS pixels) of character `id`'s root body, for tests that click it. */
+  screenPosition(id: number): { x: number; y: number } | null;
 }
 
 declare global {
   interface Window {
-    gaitlab: { stats(): GaitlabStats };
+    gaitlab: GaitlabHook;
   }
 }
 
 const canvas = document.querySelector<HTMLCanvasElement>('#scene');
 if (!canvas) throw new Error('index.html has no <canvas id="scene">');
 
+const overlay = new Overlay(document.body);
 let client: SimClient | null = null;
-/** Whether the worker has reported being paused (the button follows it, not the click). */
-let paused = false;
-const overlay = new Overlay(document.body, {
-  onPauseToggle: () => (paused ? client?.resume() : client?.pause()),
-  onReset: () => client?.reset(),
-});
-
-const state = { threads: 0, ready: false, error: null as string | null, stepMs: 0, lastStats: 0 };
+/** Mirrors of the worker's reports: the UI follows what the worker confirms, not the clicks. */
+const state = {
+  threads: 0,
+  ready: false,
+  error: null as string | null,
+  paused: false,
+  timeScale: 1 as TimeScale,
+  lastStats: 0,
+  drawCalls: 0,
+  characters: [] as CharacterStatus[],
+  selected: null as number | null,
+  follow: false,
+};
 /** Without statistics from the worker for this long, it is stuck (it reports 4 times a second). */
 const STALL_MS = 15_000;
 const fpsMeter = new RateMeter();
 const realtimeMeter = new RateMeter();
 let frames = 0;
 const crowd = new CrowdMesh();
+const ring = new SelectionRing();
+let gaits: GaitSession | null = null;
+
+/**
+ * How the page runs: WASM threads need cross-origin isolation, which the server's headers give
+ * (npm start), or — on a static host that cannot send them — coi-serviceworker, which adds them
+ * from a service worker after one reload (see index.html).
+ */
+function isolationMode(): string {
+  if (!window.crossOriginIsolated) return 'none';
+  return navigator.serviceWorker?.controller?.scriptURL.includes('coi-serviceworker') ? 'service worker' : 'headers';
+}
 
 function showError(title: string, detail: string): void {
   state.error = `${title}: ${detail}`;
@@ -65,42 +122,146 @@ function showError(title: string, detail: string): void {
 window.addEventListener('error', (event) => showError('Unexpected error', errorMessage(event.error ?? event.message)));
 window.addEventListener('unhandledrejection', (event) => showError('Unexpected error', errorMessage(event.reason)));
 
-window.gaitlab = Object.freeze({
-  stats: (): GaitlabStats => ({
+const send = (command: SceneCommand) => client?.send({ type: 'scene', command });
+const selectedStatus = () => state.characters.find((c) => c.id === state.selected) ?? null;
+
+function select(id: number | null): void {
+  state.selected = id !== null && state.characters.some((c) => c.id === id) ? id : null;
+  panel.setSelection(selectedStatus());
+  gaits?.select(selectedStatus());
+}
+
+const panel = new ControlPanel({
+  togglePause: () => client?.send({ type: state.paused ? 'resume' : 'pause' }),
+  step: () => client?.send({ type: 'step' }),
+  timeScale: (scale) => client?.send({ type: 'timeScale', scale }),
+  newScene: () => client?.reset(),
+  add: (kind, count) => send({ type: 'add', kind, count }),
+  removeSelected: () => {
+    if (state.selected === null) return;
+    send({ type: 'remove', id: state.selected });
+    select(null);
+  },
+  resetSelected: () => state.selected !== null && send({ type: 'resetCharacter', id: state.selected }),
+  resetFallen: () => send({ type: 'resetFallen' }),
+  autoReset: (seconds) => send({ type: 'autoReset', seconds }),
+  steer: (speed, turn, target) =>
+    send({ type: 'setGoal', id: target === 'selected' && state.selected !== null ? state.selected : 'all', speed, turn }),
+  follow: (on) => (state.follow = on),
+  deselect: () => select(null),
+});
+
+const hook: GaitlabHook = {
+  stats: () => ({
+    characters: state.characters.length,
+    fallen: state.characters.filter((c) => c.fallen).length,
     simTime: crowd.frame?.simTime ?? 0,
     realtimeFactor: realtimeMeter.rate,
     fps: fpsMeter.rate,
-    bodies: crowd.frame?.bodyCount ?? 0,
     threads: state.threads,
-    paused,
     crossOriginIsolated: window.crossOriginIsolated,
+    drawCalls: state.drawCalls,
+    isolation: isolationMode(),
+    bodies: crowd.frame?.bodyCount ?? 0,
+    paused: state.paused,
+    timeScale: state.timeScale,
     ready: state.ready,
     error: state.error,
+    gaits: gaits !== null,
+    selected: state.selected,
   }),
-});
+  characters: () => state.characters.map((c) => ({ ...c, position: [...c.position] as Vec3, goal: { ...c.goal } })),
+  getGait: async (id) => {
+    if (!gaits) throw new Error('this build has no parameter schema');
+    return gaits.gaitOf(id);
+  },
+  shareUrl: async (id) => {
+    if (!gaits) throw new Error('this build has no parameter schema');
+    return gaits.shareUrl(id);
+  },
+  presetGait: async (type) => {
+    if (!gaits) throw new Error('this build has no parameter schema');
+    return gaits.presetOf(type);
+  },
+  throwBox: (target) => pointer?.throwAt(new THREE.Vector3(...target)),
+  setGoal: (id, goal) => send({ type: 'setGoal', id, speed: goal.speed, turn: goal.turn }),
+  select: (id) => select(id),
+  step: (count) => client?.send({ type: 'step', count }),
+  pause: () => client?.send({ type: 'pause' }),
+  resume: () => client?.send({ type: 'resume' }),
+  screenPosition: (id) => {
+    const index = crowd.firstBodyOf(id);
+    if (index < 0 || !stage) return null;
+    const p = crowd.bodyPosition(index, new THREE.Vector3()).project(stage.camera);
+    const rect = stage.renderer.domElement.getBoundingClientRect();
+    return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
+  },
+};
+window.gaitlab = Object.freeze(hook);
 
 let stage: Stage | null = null;
+let pointer: PointerInteraction | null = null;
 try {
   stage = new Stage(canvas);
-  stage.scene.add(crowd.group);
+  stage.scene.add(crowd.group, ring.mesh);
+  pointer = new PointerInteraction(stage, crowd, { send, select });
 } catch (error) {
   showError('WebGL is not available', `${errorMessage(error)}\nThe demo needs a browser with WebGL 2.`);
 }
 
+/** Keys steer the selected character (or all), and drive the simulation. */
+function onKey(event: KeyboardEvent): void {
+  if (event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement || event.ctrlKey || event.metaKey) return;
+  const v = panel.values;
+  const steer = (dSpeed: number, dTurn: number) => {
+    v.speed = Math.min(2, Math.max(-0.5, Math.round((v.speed + dSpeed) * 100) / 100));
+    v.turnDegrees = Math.min(60, Math.max(-60, v.turnDegrees + dTurn));
+    v.steer = state.selected !== null ? 'selected' : 'all';
+    send({ type: 'setGoal', id: state.selected ?? 'all', speed: v.speed, turn: (v.turnDegrees * Math.PI) / 180 });
+  };
+  switch (event.key) {
+    case 'w': case 'W': case 'ArrowUp': steer(0.1, 0); break;
+    case 's': case 'S': case 'ArrowDown': steer(-0.1, 0); break;
+    case 'a': case 'A': case 'ArrowLeft': steer(0, 5); break;
+    case 'd': case 'D': case 'ArrowRight': steer(0, -5); break;
+    case ' ': client?.send({ type: state.paused ? 'resume' : 'pause' }); break;
+    case '.': client?.send({ type: 'step' }); break;
+    case 'f': case 'F': v.follow = state.follow = !state.follow; break;
+    case 'r': case 'R': if (state.selected !== null) send({ type: 'resetCharacter', id: state.selected }); break;
+    case 'Delete': case 'Backspace':
+      if (state.selected !== null) {
+        send({ type: 'remove', id: state.selected });
+        select(null);
+      }
+      break;
+    case 'Escape': select(null); break;
+    default: return;
+  }
+  event.preventDefault();
+}
+
 if (!window.crossOriginIsolated) {
-  // SharedArrayBuffer (hence WASM threads and the shared render buffer) needs isolation.
-  showError(
-    'This page must be served with cross-origin isolation',
-    'The simulation uses WebAssembly threads, which browsers only allow when the page is sent with the headers ' +
-      '"Cross-Origin-Opener-Policy: same-origin" and "Cross-Origin-Embedder-Policy: require-corp". ' +
-      'Serve it with `npm start` (or `node scripts/serve.mjs`) rather than opening the file or using another server.',
-  );
+  // SharedArrayBuffer (hence WASM threads and the shared render buffer) needs isolation. On a
+  // host without the headers, coi-serviceworker (index.html) installs a service worker and
+  // reloads the page; give it a moment before saying it could not.
+  overlay.message('Not cross-origin isolated: enabling it through a service worker, the page reloads…');
+  setTimeout(() => {
+    showError(
+      'This page must be served with cross-origin isolation',
+      'The simulation uses WebAssembly threads, which browsers only allow when the page is sent with the headers ' +
+        '"Cross-Origin-Opener-Policy: same-origin" and "Cross-Origin-Embedder-Policy: require-corp". ' +
+        'On a static host the page installs a service worker that adds them (coi-serviceworker), but this browser ' +
+        'did not allow it (service workers need https or localhost, and are off in private windows of some browsers). ' +
+        'Serve it with `npm start` (or `node scripts/serve.mjs`), or from https.',
+    );
+  }, navigator.serviceWorker && window.isSecureContext ? 5000 : 0);
 } else if (stage) {
   const options = simOptionsFromQuery(location.search, {
     wasmUrl: new URL(`${import.meta.env.BASE_URL}wasm/gaitlab.mjs`, location.href).href,
     threads: defaultThreads(navigator.hardwareConcurrency),
     seed: 1,
-    characters: 6,
+    // A dozen bipeds and a dozen quadrupeds.
+    characters: 24,
   });
   let framed = false;
   client = new SimClient(options, {
@@ -109,21 +270,33 @@ if (!window.crossOriginIsolated) {
       state.threads = info.threads;
       state.lastStats = performance.now(); // the stall watchdog counts from here
       realtimeMeter.reset();
-      overlay.setControlsEnabled(true);
+      framed = false;
+      select(null);
       console.info(`gaitlab ${info.version}: scene ${info.generation}, ${reader.capacity} body slots, ${info.threads} threads`);
+      if (!gaits) gaits = GaitSession.create(info.schema, client!, panel.gaitFolder, overlay);
     },
     onRelease: () => crowd.detach(),
     onStats: (stats) => {
-      state.stepMs = stats.stepMs;
       state.lastStats = performance.now();
-      paused = stats.paused;
+      state.paused = stats.paused;
+      state.timeScale = stats.timeScale;
+      state.characters = stats.characters;
+      panel.setPaused(stats.paused);
+      // The selected character may have been removed.
+      if (state.selected !== null && !selectedStatus()) select(null);
+      gaits?.tick(selectedStatus(), stats.characters);
     },
     onError: (message) => showError('The simulation stopped', message),
+    onCommandError: (message) => overlay.message(message, 'problem'),
   });
 
   const activeStage = stage;
+  const focus = new THREE.Vector3();
+  let lastFrame = performance.now() / 1000;
   const frame = (): void => {
     const now = performance.now() / 1000;
+    const dt = Math.min(0.1, now - lastFrame);
+    lastFrame = now;
     if (crowd.update() && !framed) {
       const bounds = crowd.bounds();
       if (bounds) {
@@ -132,18 +305,29 @@ if (!window.crossOriginIsolated) {
         framed = true;
       }
     }
+    const index = state.selected === null ? -1 : crowd.firstBodyOf(state.selected);
+    if (index >= 0) {
+      crowd.bodyPosition(index, focus);
+      ring.place(focus);
+      if (state.follow) activeStage.follow(focus, dt);
+    } else {
+      ring.place(null);
+    }
     if (crowd.frame) {
       state.ready = true;
       // Sampled on every display frame, new simulation frame or not: wall time passes either way.
       realtimeMeter.sample(crowd.frame.simTime, now);
     }
+    gaits?.animate(!state.paused);
     activeStage.render();
+    state.drawCalls = activeStage.renderer.info.render.calls;
     fpsMeter.sample(++frames, now);
     requestAnimationFrame(frame);
   };
 
   const resize = () => activeStage.resize();
   window.addEventListener('resize', resize);
+  window.addEventListener('keydown', onKey);
   resize();
   requestAnimationFrame(frame);
 
@@ -154,13 +338,18 @@ if (!window.crossOriginIsolated) {
     if (state.lastStats > 0 && !state.error && document.visibilityState === 'visible' && silent > STALL_MS) {
       showError('The simulation stopped responding', `The sim worker has sent nothing for ${(silent / 1000).toFixed(0)} s.`);
     }
+    const selected = selectedStatus();
     overlay.show({
       fps: fpsMeter.rate,
       realtimeFactor: realtimeMeter.rate,
-      bodies: crowd.frame?.bodyCount ?? 0,
+      characters: state.characters.length,
+      fallen: state.characters.filter((c) => c.fallen).length,
       threads: state.threads,
-      stepMs: state.stepMs,
-      paused,
+      mode: isolationMode() === 'service worker' ? 'multi-threaded (isolated by service worker)' : 'multi-threaded (isolated by headers)',
+      drawCalls: state.drawCalls,
+      paused: state.paused,
+      timeScale: state.timeScale,
+      selected: selected ? `${selected.type} #${selected.id}${selected.fallen ? ' (down)' : ''}` : null,
     });
   }, 250);
 }

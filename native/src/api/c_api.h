@@ -108,6 +108,54 @@ GL_EXPORT int gl_opt_evaluations(void* opt);
 // generations, evaluations). Valid until the next call on this handle.
 GL_EXPORT const char* gl_opt_best_json(void* opt);
 
+// ---- Interaction: the demo page's commands (issue 5) --------------------------------------------
+// Characters are named by the id gl_sim_spawn returned. The sim worker calls these between
+// fixed steps only (it queues the page's commands and applies them at the start of the next
+// step), so each acts at a known step index. Functions returning int give 0 on success and -1
+// if no character has that id.
+
+// Steering goal of character `id`, or of every character with id = -1: forward speed (m/s) and
+// turn rate (rad/s, about +y, positive = left).
+GL_EXPORT int gl_sim_set_goal(void* sim, int id, double speed, double turn_rate);
+
+// Throws a box of half size `half` (m) from (x, y, z) with velocity (vx, vy, vz) m/s. It collides
+// with characters, props and the ground; the oldest thrown box goes once there are 32. Returns
+// its id, or -1 if the render buffer is full.
+GL_EXPORT int gl_sim_throw_box(void* sim, double x, double y, double z, double vx, double vy,
+                               double vz, double half);
+
+// Holds point (lx, ly, lz) of segment `segment` of character `id` (segment body frame, metres;
+// the segment is the character's n-th body in the render buffer) on a spring towards the world
+// point (tx, ty, tz), every step until gl_sim_end_drag. Calling it again moves the target.
+GL_EXPORT int gl_sim_drag(void* sim, int id, int segment, double lx, double ly, double lz,
+                          double tx, double ty, double tz);
+GL_EXPORT void gl_sim_end_drag(void* sim);
+
+// Replaces character `id` by a fresh one standing where it is, same gait and goal.
+GL_EXPORT int gl_sim_reset_character(void* sim, int id);
+GL_EXPORT int gl_sim_remove_character(void* sim, int id);
+
+// Characters fallen for `seconds` (leg frame below half its standing height or tilted over 60°)
+// are reset automatically; 0 turns it off.
+GL_EXPORT void gl_sim_set_auto_reset(void* sim, double seconds);
+
+GL_EXPORT int gl_sim_character_count(void* sim);
+
+// Fields per character written by gl_sim_character_info, in this order.
+enum {
+  GL_INFO_ID, GL_INFO_KIND, GL_INFO_X, GL_INFO_Y, GL_INFO_Z,  // root leg frame's centre, m
+  GL_INFO_HEADING,        // rad about +y, 0 = +z
+  GL_INFO_SPEED,          // horizontal speed of the root leg frame, m/s
+  GL_INFO_FALLEN,         // 1 or 0
+  GL_INFO_FALLEN_SECONDS, // how long it has been down
+  GL_INFO_GOAL_SPEED, GL_INFO_GOAL_TURN,
+  GL_INFO_PHASE,          // gait phase in [0, 1)
+  GL_INFO_FIELDS
+};
+// Writes GL_INFO_FIELDS doubles per character for at most `capacity` characters into `out`;
+// returns the number of characters (which may exceed `capacity`).
+GL_EXPORT int gl_sim_character_info(void* sim, double* out, int capacity);
+
 #ifdef __cplusplus
 }
 #endif

@@ -11,7 +11,9 @@
 #include <new>
 
 #include "gait/defaults.h"
+#include "gait/heading.h"
 #include "physics/convert.h"
+#include "sim/walk_trial.h"
 
 namespace gaitlab::sim {
 
@@ -118,7 +120,8 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   const double groundY = world_.terrainHeight(x, z);
   agents_.push_back(std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, groundY, z), heading));
   const int id = nextId_++;
-  agentIds_.push_back(id);
+  agents_.back()->id = id;
+  agents_.back()->kind = kind;
   const physics::Character& c = *agents_.back()->body;
   for (int i = 0; i < c.segmentCount(); ++i) {
     const body::Segment& s = m.segments[i];
@@ -130,10 +133,6 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
   return id;
 }
 
-int Simulation::characterIndex(int id) const {
-  const auto it = std::find(agentIds_.begin(), agentIds_.end(), id);
-  return it == agentIds_.end() ? -1 : static_cast<int>(it - agentIds_.begin());
-}
 
 void Simulation::demoScene(int characters) {
   SceneRandom rng{seed_};
@@ -159,6 +158,7 @@ void Simulation::step(int steps) {
       for (int i = begin; i < end; ++i) control(*agents_[i]);
     });
     const auto t1 = std::chrono::steady_clock::now();
+    applyDrag();
     world_.step();
     const auto t2 = std::chrono::steady_clock::now();
     controllerSeconds_ += std::chrono::duration<double>(t1 - t0).count();
@@ -166,6 +166,7 @@ void Simulation::step(int steps) {
     for (auto& a : agents_) std::fill(std::begin(a->footContact), std::end(a->footContact), false);
     world_.updateContacts();
     ++stepIndex_;
+    updateFallen();
   }
   publish();
 }
@@ -216,6 +217,149 @@ std::string Simulation::stateHash() const {
   char out[17];
   std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h.h));
   return out;
+}
+
+// ---- Interaction (the demo page, issue 5) ----------------------------------------------------
+
+int Simulation::indexOf(int id) const {
+  for (size_t i = 0; i < agents_.size(); ++i)
+    if (agents_[i]->id == id) return static_cast<int>(i);
+  return -1;
+}
+
+int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& velocity,
+                         double half) {
+  if (bodyCount() + 1 > kRenderCapacity) return -1;
+  // Solid wood, roughly (600 kg/m³): a 0.24 m box weighs ~8 kg, enough at 10-15 m/s to knock
+  // a 1.7 m biped sideways without flinging it across the scene.
+  const double mass = 600.0 * std::pow(2 * half, 3);
+  btRigidBody* b = world_.addBox(Eigen::Vector3d::Constant(half), mass, from,
+                                 Eigen::Quaterniond::Identity(), physics::kPropGroup,
+                                 physics::kPropMask, 0.8);
+  b->setLinearVelocity(physics::toBt(velocity));
+  // Thrown boxes are the warm wood colour of the scene's boxes, a shade darker to tell them apart.
+  const float h = static_cast<float>(half);
+  addRenderBody(b, {{h, h, h}, 0xc08a48ffu, -1, 0});
+  thrown_.push_back(b);
+  if (static_cast<int>(thrown_.size()) > kMaxThrown) {
+    btRigidBody* oldest = thrown_.front();
+    thrown_.erase(thrown_.begin());
+    removeRenderBodies({oldest});
+    world_.removeBody(oldest);
+  }
+  return nextId_++;
+}
+
+bool Simulation::drag(int id, int segment, const Eigen::Vector3d& local,
+                      const Eigen::Vector3d& target) {
+  const int i = indexOf(id);
+  if (i < 0 || segment < 0 || segment >= character(i).segmentCount()) return false;
+  drag_ = {id, segment, local, target};
+  return true;
+}
+
+void Simulation::applyDrag() {
+  if (drag_.id < 0) return;
+  const int i = indexOf(drag_.id);
+  if (i < 0) {  // the character was removed while held
+    endDrag();
+    return;
+  }
+  btRigidBody* b = character(i).body(drag_.segment);
+  const btTransform& t = b->getCenterOfMassTransform();
+  const btVector3 point = t * physics::toBt(drag_.local);
+  const btVector3 rel = point - t.getOrigin();
+  const btVector3 v = b->getVelocityInLocalPoint(rel);
+  // A critically damped spring sized for the whole character (ω = 5 rad/s: it follows the
+  // pointer in about half a second), applied at one point of one segment. Explicit integration
+  // at 120 Hz is stable only while k·dt²/m and c·dt/m stay below ~1 for the segment held
+  // (a foot weighs ~1 kg against a 60 kg figure), hence the limits; and the force is capped at
+  // three body weights, so a pointer far away pulls hard but never launches the character.
+  const double mass = character(i).morphology().totalMass();
+  const double segmentMass = 1.0 / std::max(1e-6, static_cast<double>(b->getInvMass()));
+  const double dt = physics::kFixedStep;
+  const double omega = 5.0;
+  const double k = std::min(mass * omega * omega, 0.5 * segmentMass / (dt * dt));
+  const double c = std::min(2.0 * 0.9 * omega * mass, 0.5 * segmentMass / dt);
+  btVector3 force = static_cast<btScalar>(k) * (physics::toBt(drag_.target) - point) -
+                    static_cast<btScalar>(c) * v;
+  const double cap = 3.0 * mass * 9.81;
+  if (force.length() > cap) force *= static_cast<btScalar>(cap / force.length());
+  // As an impulse over the whole fixed step: Bullet clears applied forces after each of the
+  // world's sub-steps (stepSimulation ends in clearForces), so a force would act on the first only.
+  b->applyImpulse(force * static_cast<btScalar>(dt), rel);
+}
+
+bool Simulation::resetCharacter(int id) {
+  const int i = indexOf(id);
+  if (i < 0) return false;
+  Agent& old = *agents_[i];
+  const body::Morphology& m = old.body->morphology();
+  const int root = m.legFrames[0];
+  const physics::SegmentState s = old.body->segmentState(root);
+  const double heading = gait::headingOf(s.orientation);
+  // The rest pose puts the root at `center` in the character frame: place the new figure so
+  // that its root stands where the old one's is now.
+  const Eigen::Vector3d offset =
+      Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()) * m.segments[root].center;
+  const double x = s.position.x() - offset.x(), z = s.position.z() - offset.z();
+  const gait::GaitParams params = old.controller.params();
+  const gait::Goal goal = old.controller.goal();
+  const Kind kind = old.kind;
+  std::vector<btRigidBody*> oldBodies;
+  for (int k = 0; k < old.body->segmentCount(); ++k) oldBodies.push_back(old.body->body(k));
+
+  auto fresh = std::make_unique<Agent>(world_, m, Eigen::Vector3d(x, world_.terrainHeight(x, z), z),
+                                       heading);
+  fresh->id = id;
+  fresh->kind = kind;
+  fresh->controller.setParams(params);
+  fresh->controller.setGoal(goal);
+  // Same morphology, same number of bodies in the same order: the render entries keep their
+  // places and colours and only point at the new bodies.
+  int k = 0;
+  for (RenderBody& rb : renderBodies_)
+    if (rb.info.owner == id) rb.body = fresh->body->body(k++);
+  agents_[i] = std::move(fresh);  // the old character's bodies leave the world here
+  if (drag_.id == id) endDrag();
+  return true;
+}
+
+bool Simulation::removeCharacter(int id) {
+  const int i = indexOf(id);
+  if (i < 0) return false;
+  std::vector<btRigidBody*> bodies;
+  for (int k = 0; k < agents_[i]->body->segmentCount(); ++k) bodies.push_back(agents_[i]->body->body(k));
+  removeRenderBodies(bodies);
+  agents_.erase(agents_.begin() + i);
+  if (drag_.id == id) endDrag();
+  return true;
+}
+
+void Simulation::removeRenderBodies(const std::vector<btRigidBody*>& bodies) {
+  const auto gone = [&](const RenderBody& rb) {
+    return std::find(bodies.begin(), bodies.end(), rb.body) != bodies.end();
+  };
+  renderBodies_.erase(std::remove_if(renderBodies_.begin(), renderBodies_.end(), gone),
+                      renderBodies_.end());
+  for (size_t i = 0; i < renderBodies_.size(); ++i) info_[i] = renderBodies_[i].info;
+  // After the entries: a reader that saw the old version reads them again (render_buffer.h).
+  header_->infoVersion.fetch_add(1);
+}
+
+void Simulation::updateFallen() {
+  const double now = time();
+  std::vector<int> toReset;
+  for (int i = 0; i < characterCount(); ++i) {
+    Agent& a = *agents_[i];
+    if (!hasFallen(*this, i)) {
+      a.fallenSince = -1;
+      continue;
+    }
+    if (a.fallenSince < 0) a.fallenSince = now;
+    if (autoResetSeconds_ > 0 && now - a.fallenSince >= autoResetSeconds_) toReset.push_back(a.id);
+  }
+  for (int id : toReset) resetCharacter(id);
 }
 
 }  // namespace gaitlab::sim

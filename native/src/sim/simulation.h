@@ -42,8 +42,8 @@ class Simulation {
   int characterCount() const { return static_cast<int>(agents_.size()); }
   // The index (0..characterCount()-1) of the character spawn() returned `id` for, or -1 when
   // `id` names no character (a box, or nothing spawned).
-  int characterIndex(int id) const;
-  int characterId(int index) const { return agentIds_[index]; }
+  int characterIndex(int id) const { return indexOf(id); }
+  int characterId(int index) const { return agents_[index]->id; }
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }
   double groundHeight(double x, double z) const { return world_.terrainHeight(x, z); }
@@ -62,6 +62,43 @@ class Simulation {
   std::string stateHash() const;
 
   const RenderHeader* renderBuffer() const { return header_; }
+
+  // ---- Interaction (the demo page, issue 5) --------------------------------------------------
+  // Everything a user does to a running scene. The sim worker applies these between fixed steps
+  // (it queues its commands and applies them at the start of the next step), so each one acts at
+  // a known step index and a run can be replayed from (seed, scene, command log).
+
+  // Index in 0..characterCount()-1 of the character with id `id`, or -1.
+  int indexOf(int id) const;
+  int idOf(int index) const { return agents_[index]->id; }
+  Kind kindOf(int index) const { return agents_[index]->kind; }
+  // Fallen now (walk_trial.h's hasFallen, evaluated after every step), and for how long.
+  bool fallen(int index) const { return agents_[index]->fallenSince >= 0; }
+  double fallenSeconds(int index) const {
+    return fallen(index) ? time() - agents_[index]->fallenSince : 0.0;
+  }
+
+  // A box of half size `half` thrown from `from` with velocity `velocity` (m/s). It collides
+  // with the ground, props and characters. At most kMaxThrown thrown boxes exist: the oldest
+  // goes when another is thrown, so a user who keeps clicking does not slow the scene down.
+  static constexpr int kMaxThrown = 32;
+  int throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& velocity, double half);
+
+  // A spring pulling point `local` (body frame of the character's segment `segment`, metres)
+  // towards `target` (world), applied every step until endDrag(). One drag at a time: a pointer.
+  // Returns false if the character or segment does not exist.
+  bool drag(int id, int segment, const Eigen::Vector3d& local, const Eigen::Vector3d& target);
+  void endDrag() { drag_.id = -1; }
+
+  // Replaces character `id` by a new one standing where its leg frame is now (on the ground,
+  // facing its current heading), with the same gait parameters and goal. Returns false if no
+  // such character exists.
+  bool resetCharacter(int id);
+  // Removes character `id` (its bodies leave the world and the render buffer).
+  bool removeCharacter(int id);
+  // Characters fallen for at least `seconds` are reset automatically; 0 turns this off.
+  void setAutoReset(double seconds) { autoResetSeconds_ = seconds; }
+  double autoReset() const { return autoResetSeconds_; }
 
  private:
   struct RenderBody {
@@ -84,13 +121,29 @@ class Simulation {
     std::vector<Eigen::Vector3d> torques;
     bool footContact[gait::kMaxLegs] = {false, false, false, false};
     const physics::World* world;
+    int id = -1;
+    Kind kind = Kind::Biped;
+    double fallenSince = -1;  // simulated time it was first seen fallen; -1 = standing
   };
   void control(Agent& agent);
   std::vector<std::unique_ptr<Agent>> agents_;
-  std::vector<int> agentIds_;  // spawn() id of agents_[i]
   std::vector<RenderBody> renderBodies_;
   ThreadPool pool_;
   uint32_t seed_;
+
+  // Interaction state (see the section above).
+  struct Drag {
+    int id = -1;  // character; -1 = no drag
+    int segment = 0;
+    Eigen::Vector3d local = Eigen::Vector3d::Zero(), target = Eigen::Vector3d::Zero();
+  };
+  Drag drag_;
+  std::vector<btRigidBody*> thrown_;  // oldest first
+  double autoResetSeconds_ = 0;
+  void applyDrag();
+  void updateFallen();
+  // Drops the render entries of `bodies` and packs the rest (ids and order kept).
+  void removeRenderBodies(const std::vector<btRigidBody*>& bodies);
   uint32_t stepIndex_ = 0;
   double controllerSeconds_ = 0, physicsSeconds_ = 0;
   int nextId_ = 0;

@@ -21,6 +21,11 @@ export class CrowdMesh {
   private readonly colour = new THREE.Color();
   /** The frame on screen. */
   frame: FrameMeta | null = null;
+  /**
+   * Owner (character id, −1 for props) of each body on screen, read from BodyInfo with the
+   * colours; a character's bodies are contiguous and in morphology order, its root first.
+   */
+  owners = new Int32Array(0);
 
   /** Draws from `reader`'s render buffer from now on (a new scene). */
   attach(reader: RenderBufferReader): void {
@@ -87,13 +92,34 @@ export class CrowdMesh {
   private updateColours(reader: RenderBufferReader, mesh: THREE.InstancedMesh, bodyCount: number): void {
     const version = reader.infoVersion();
     if (version === this.colouredVersion && bodyCount <= this.colouredCount) return;
+    if (this.owners.length < bodyCount) this.owners = new Int32Array(mesh.instanceMatrix.count);
     for (let i = 0; i < bodyCount; i++) {
+      const info = reader.bodyInfo(i);
       // 0xRRGGBBAA, sRGB; alpha is not used (every body is opaque).
-      mesh.setColorAt(i, this.colour.setHex(reader.bodyInfo(i).rgba >>> 8, THREE.SRGBColorSpace));
+      mesh.setColorAt(i, this.colour.setHex(info.rgba >>> 8, THREE.SRGBColorSpace));
+      this.owners[i] = info.owner;
     }
     if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
     this.colouredVersion = version;
     this.colouredCount = bodyCount;
+  }
+
+  /** The instance matrices on screen (count × 16 floats, column-major, box scale baked in). */
+  matrices(): { array: Float32Array; count: number } {
+    return { array: (this.mesh?.instanceMatrix.array as Float32Array) ?? new Float32Array(0), count: this.mesh?.count ?? 0 };
+  }
+
+  /** Index of character `id`'s first body (its root leg frame) on screen, or −1. */
+  firstBodyOf(id: number): number {
+    const count = Math.min(this.mesh?.count ?? 0, this.owners.length);
+    for (let i = 0; i < count; i++) if (this.owners[i] === id) return i;
+    return -1;
+  }
+
+  /** Centre of body `index` on screen. */
+  bodyPosition(index: number, target: THREE.Vector3): THREE.Vector3 {
+    const m = this.mesh!.instanceMatrix.array;
+    return target.set(m[index * MATRIX_FLOATS + 12], m[index * MATRIX_FLOATS + 13], m[index * MATRIX_FLOATS + 14]);
   }
 
   /** Centre and radius of the bodies on screen (for framing the camera), or null if none. */

@@ -91,6 +91,17 @@ export class Stage {
     shadowCamera.updateProjectionMatrix();
   }
 
+  /**
+   * Follow mode: moves the camera with a point (the selected character), keeping the view's
+   * direction and distance, eased so that the character's own sway does not shake the view.
+   */
+  follow(point: THREE.Vector3, dt: number): void {
+    const goal = new THREE.Vector3(point.x, Math.max(0.6, point.y), point.z);
+    const delta = goal.sub(this.controls.target).multiplyScalar(1 - Math.exp(-dt * 4));
+    this.controls.target.add(delta);
+    this.camera.position.add(delta);
+  }
+
   render(): void {
     this.controls.update();
     this.followTarget();

@@ -20,7 +20,45 @@ export interface GaitlabModule {
   _gl_sim_threads(sim: number): number;
   _gl_sim_state_hash(sim: number): number;
   _gl_sim_render_buffer(sim: number): number;
+  // Interaction (c_api.h, "Interaction: the demo page's commands").
+  _gl_sim_set_goal(sim: number, id: number, speed: number, turnRate: number): number;
+  _gl_sim_throw_box(sim: number, x: number, y: number, z: number, vx: number, vy: number, vz: number, half: number): number;
+  _gl_sim_drag(sim: number, id: number, segment: number, lx: number, ly: number, lz: number, tx: number, ty: number, tz: number): number;
+  _gl_sim_end_drag(sim: number): void;
+  _gl_sim_reset_character(sim: number, id: number): number;
+  _gl_sim_remove_character(sim: number, id: number): number;
+  _gl_sim_set_auto_reset(sim: number, seconds: number): void;
+  _gl_sim_character_count(sim: number): number;
+  _gl_sim_character_info(sim: number, out: number, capacity: number): number;
+  _malloc(bytes: number): number;
+  _free(pointer: number): void;
+  HEAPF64: Float64Array;
+  // The parameter schema (schema issue); absent from builds before it.
+  _gl_schema_json?(): number;
+  _gl_preset_json?(kind: number): number;
+  _gl_sim_set_params?(sim: number, id: number, kind: number, json: number): number;
+  _gl_sim_get_params?(sim: number, id: number): number;
+  _gl_last_error?(): number;
+  stringToUTF8(text: string, pointer: number, maxBytes: number): void;
+  lengthBytesUTF8(text: string): number;
 }
+
+/** Doubles per character written by gl_sim_character_info (GL_INFO_* in c_api.h). */
+export const INFO = {
+  id: 0,
+  kind: 1,
+  x: 2,
+  y: 3,
+  z: 4,
+  heading: 5,
+  speed: 6,
+  fallen: 7,
+  fallenSeconds: 8,
+  goalSpeed: 9,
+  goalTurn: 10,
+  phase: 11,
+  fields: 12,
+} as const;
 
 /** Options the 3.1.6 factory understands that gaitlab passes. */
 export interface GaitlabModuleOptions {
@@ -104,6 +142,97 @@ export class Simulation {
     return this.module.UTF8ToString(this.module._gl_sim_state_hash(this.sim));
   }
 
+  // ---- Interaction ----
+
+  /** Returns 0, or -1 if no character has this id (-1 = all characters). */
+  setGoal(id: number, speed: number, turnRate: number): number {
+    return this.module._gl_sim_set_goal(this.sim, id, speed, turnRate);
+  }
+
+  throwBox(from: readonly number[], velocity: readonly number[], half: number): number {
+    return this.module._gl_sim_throw_box(this.sim, from[0], from[1], from[2], velocity[0], velocity[1], velocity[2], half);
+  }
+
+  drag(id: number, segment: number, local: readonly number[], target: readonly number[]): number {
+    return this.module._gl_sim_drag(this.sim, id, segment, local[0], local[1], local[2], target[0], target[1], target[2]);
+  }
+
+  endDrag(): void {
+    this.module._gl_sim_end_drag(this.sim);
+  }
+
+  resetCharacter(id: number): number {
+    return this.module._gl_sim_reset_character(this.sim, id);
+  }
+
+  removeCharacter(id: number): number {
+    return this.module._gl_sim_remove_character(this.sim, id);
+  }
+
+  setAutoReset(seconds: number): void {
+    this.module._gl_sim_set_auto_reset(this.sim, seconds);
+  }
+
+  /**
+   * Every character's record (INFO fields), as one Float64Array of count × INFO.fields. A
+   * scratch block in module memory is kept and grown as needed.
+   */
+  characterInfo(): Float64Array {
+    const count = this.module._gl_sim_character_count(this.sim);
+    const bytes = Math.max(1, count) * INFO.fields * 8;
+    if (bytes > this.scratchBytes) {
+      if (this.scratch) this.module._free(this.scratch);
+      this.scratch = this.module._malloc(bytes);
+      this.scratchBytes = bytes;
+    }
+    const n = this.module._gl_sim_character_info(this.sim, this.scratch, count);
+    const start = this.scratch >> 3;
+    // A copy: the heap view must not leave the worker (and the block is reused).
+    return this.module.HEAPF64.slice(start, start + Math.min(n, count) * INFO.fields);
+  }
+
+  // ---- Gait parameters (the schema issue's C API; absent from builds before it) ----
+
+  private requireSchema(): void {
+    if (!this.module._gl_sim_get_params) throw new Error('this build of the module has no parameter schema');
+  }
+
+  private lastError(): string {
+    return this.module._gl_last_error ? this.module.UTF8ToString(this.module._gl_last_error()) : 'unknown error';
+  }
+
+  /** Character `id`'s parameters as a gait file's JSON. */
+  getParams(id: number): string {
+    this.requireSchema();
+    const pointer = this.module._gl_sim_get_params!(this.sim, id);
+    if (!pointer) throw new Error(this.lastError());
+    return this.module.UTF8ToString(pointer);
+  }
+
+  /** The preset gait file's JSON of a kind. */
+  presetJson(kind: number): string {
+    this.requireSchema();
+    const pointer = this.module._gl_preset_json!(kind);
+    if (!pointer) throw new Error(this.lastError());
+    return this.module.UTF8ToString(pointer);
+  }
+
+  /** Sets parameters (gait file JSON) of `id` or of every character of `kind` (id −1); returns null or the problem. */
+  setParams(id: number, kind: number, json: string): string | null {
+    if (!this.module._gl_sim_set_params) return 'this build of the module has no parameter schema';
+    const bytes = this.module.lengthBytesUTF8(json) + 1;
+    const pointer = this.module._malloc(bytes);
+    try {
+      this.module.stringToUTF8(json, pointer, bytes);
+      return this.module._gl_sim_set_params(this.sim, id, kind, pointer) === 0 ? null : this.lastError();
+    } finally {
+      this.module._free(pointer);
+    }
+  }
+
+  private scratch = 0;
+  private scratchBytes = 0;
+
   /** Byte address of the RenderHeader in module memory (render-buffer.ts reads it). */
   get renderHeader(): number {
     return this.module._gl_sim_render_buffer(this.sim);
@@ -114,6 +243,8 @@ export class Simulation {
   }
 
   destroy(): void {
+    if (this.scratch) this.module._free(this.scratch);
+    this.scratch = this.scratchBytes = 0;
     if (this.handle) this.module._gl_sim_destroy(this.handle);
     this.handle = 0;
   }

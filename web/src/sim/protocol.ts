@@ -13,9 +13,64 @@ export interface SimOptions {
   threads: number;
   /** Seed of every random choice of the scene. */
   seed: number;
-  /** Characters in the demo scene. */
+  /** Characters in the demo scene: a mixed crowd, bipeds and quadrupeds alternating. */
   characters: number;
+  /** Start paused at step 0 (`?paused=1`): for stepping through a run, and for tests. */
+  paused?: boolean;
 }
+
+export type Vec3 = [number, number, number];
+export type CharacterType = 'biped' | 'quadruped';
+
+/**
+ * Commands that change the running scene. The worker queues them and applies them at the start
+ * of the next fixed step, logging each with that step's index (DESIGN.md, data flow step 1), so
+ * a run can be replayed from (seed, scene, command log). While paused they apply at once, which
+ * is the same thing: no step happens in between.
+ */
+export type SceneCommand =
+  /** Steering goal of one character, or of all: forward speed (m/s) and turn rate (rad/s, + = left). */
+  | { type: 'setGoal'; id: number | 'all'; speed: number; turn: number }
+  /** A box of half size `half` (m) from `from` with `velocity` (m/s). */
+  | { type: 'throwBox'; from: Vec3; velocity: Vec3; half: number }
+  /** Holds point `local` (segment frame) of segment `segment` of character `id` on a spring to `target`. */
+  | { type: 'drag'; id: number; segment: number; local: Vec3; target: Vec3 }
+  | { type: 'endDrag' }
+  /** Respawns character `id` standing where it is, with its gait and goal. */
+  | { type: 'resetCharacter'; id: number }
+  /** Respawns every character that is down. */
+  | { type: 'resetFallen' }
+  | { type: 'remove'; id: number }
+  /** `count` new characters on the next free places of the crowd's grid. */
+  | { type: 'add'; kind: CharacterType; count: number }
+  /** Characters down for this long are reset automatically; 0 = never. */
+  | { type: 'autoReset'; seconds: number }
+  /**
+   * New gait parameters (a gait file's JSON, gait-file.ts) for character `id`, or for every
+   * character of `character`'s type with id 'all'.
+   */
+  | { type: 'setParams'; id: number | 'all'; character: CharacterType; json: string };
+
+/** One character as the worker last saw it (gl_sim_character_info). */
+export interface CharacterStatus {
+  id: number;
+  type: CharacterType;
+  /** Root leg frame's centre, metres. */
+  position: Vec3;
+  /** Radians about +y; 0 faces +z. */
+  heading: number;
+  /** Horizontal speed of the root leg frame, m/s. */
+  speed: number;
+  fallen: boolean;
+  fallenSeconds: number;
+  goal: { speed: number; turn: number };
+  /** Gait phase in [0, 1). */
+  phase: number;
+}
+
+/** Slow motion: simulated seconds per wall-clock second the worker's clock aims for. */
+export const TIME_SCALES = [1, 0.5, 0.25] as const;
+export type TimeScale = (typeof TIME_SCALES)[number];
 
 /** Main thread → sim worker. */
 export type SimCommand =
@@ -28,7 +83,15 @@ export type SimCommand =
    */
   | { type: 'reset' }
   /** Answer to `release`: the main thread no longer reads `generation`'s render buffer. */
-  | { type: 'released'; generation: number };
+  | { type: 'released'; generation: number }
+  /** `count` fixed steps (default 1), when paused. */
+  | { type: 'step'; count?: number }
+  | { type: 'timeScale'; scale: TimeScale }
+  | { type: 'scene'; command: SceneCommand }
+  /** Asks for character `id`'s gait parameters; answered by a `params` event with the same request. */
+  | { type: 'getParams'; request: number; id: number }
+  /** Asks for a type's preset gait; answered by a `params` event. */
+  | { type: 'getPreset'; request: number; character: CharacterType };
 
 /** Statistics the worker reports a few times a second. */
 export interface SimStats {
@@ -42,6 +105,10 @@ export interface SimStats {
   stepMs: number;
   /** Fixed steps dropped since the last report because the machine could not keep up. */
   droppedSteps: number;
+  timeScale: TimeScale;
+  characters: CharacterStatus[];
+  /** Scene commands applied so far (the command log's length). */
+  commandsApplied: number;
 }
 
 /** Sim worker → main thread. */
@@ -55,7 +122,13 @@ export type SimEvent =
       header: number;
       threads: number;
       version: string;
+      /** The parameter schema (gl_schema_json), or null if this build has none. */
+      schema: string | null;
     }
+  /** Answer to getParams / getPreset: the gait file's JSON, or why there is none. */
+  | { type: 'params'; request: number; json: string | null; error: string | null }
+  /** A scene command the simulation refused (e.g. parameters out of bounds). */
+  | { type: 'commandError'; message: string }
   /**
    * Stop reading `generation`'s render buffer and answer `released`: the worker is about to free
    * it. Only one simulation exists at a time, so the module's fixed pthread pool is never
@@ -96,6 +169,7 @@ export function simOptionsFromQuery(search: string, defaults: SimOptions): SimOp
     threads: int('threads', 1, MAX_THREADS, defaults.threads),
     seed: int('seed', 0, 0xffffffff, defaults.seed),
     characters: int('characters', 0, 256, defaults.characters),
+    ...(query.get('paused') === '1' ? { paused: true } : {}),
   };
 }
 

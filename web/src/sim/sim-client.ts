@@ -5,7 +5,9 @@ import { RenderBufferReader } from './render-buffer';
 
 export interface SimClientEvents {
   /** A new scene's render buffer is ready to be drawn (after start and after every reset). */
-  onScene?: (reader: RenderBufferReader, info: { generation: number; threads: number; version: string }) => void;
+  onScene?: (reader: RenderBufferReader, info: { generation: number; threads: number; version: string; schema: string | null }) => void;
+  /** The simulation refused a command (the message says why). */
+  onCommandError?: (message: string) => void;
   /** The current render buffer is about to be freed: stop reading it, synchronously. */
   onRelease?: () => void;
   onStats?: (stats: SimStats) => void;
@@ -35,6 +37,27 @@ export class SimClient {
 
   send(command: SimCommand): void {
     this.worker.postMessage(command);
+  }
+
+  private nextRequest = 1;
+  private readonly requests = new Map<number, { resolve: (json: string) => void; reject: (error: Error) => void }>();
+
+  /** Character `id`'s gait parameters (a gait file's JSON), from the worker. */
+  getParams(id: number): Promise<string> {
+    return this.request((request) => ({ type: 'getParams', request, id }));
+  }
+
+  /** A type's preset gait (a gait file's JSON). */
+  getPreset(character: 'biped' | 'quadruped'): Promise<string> {
+    return this.request((request) => ({ type: 'getPreset', request, character }));
+  }
+
+  private request(make: (request: number) => SimCommand): Promise<string> {
+    const request = this.nextRequest++;
+    return new Promise((resolve, reject) => {
+      this.requests.set(request, { resolve, reject });
+      this.send(make(request));
+    });
   }
 
   pause(): void {
@@ -72,6 +95,17 @@ export class SimClient {
         return;
       case 'error':
         this.fail(event.message);
+        return;
+      case 'params': {
+        const pending = this.requests.get(event.request);
+        this.requests.delete(event.request);
+        if (!pending) return;
+        if (event.json !== null) pending.resolve(event.json);
+        else pending.reject(new Error(event.error ?? 'no parameters'));
+        return;
+      }
+      case 'commandError':
+        this.events.onCommandError?.(event.message);
         return;
       default: {
         const unknown: never = event;

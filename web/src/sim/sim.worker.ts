@@ -5,8 +5,16 @@
 // This worker is also the Emscripten "main thread" of the module, so the module's pthread pool
 // consists of workers nested in this one.
 import { FixedStepClock } from './fixed-step-clock';
-import { gaitlabVersion, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
-import { errorMessage, type SimCommand, type SimEvent, type SimOptions } from './protocol';
+import { gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
+import {
+  errorMessage,
+  type CharacterStatus,
+  type SceneCommand,
+  type SimCommand,
+  type SimEvent,
+  type SimOptions,
+  type TimeScale,
+} from './protocol';
 
 /** The fixed step of the simulation (C API: gl_sim_step takes steps of 1/120 s). */
 const STEP = 1 / 120;
@@ -42,7 +50,41 @@ let statsTimer: ReturnType<typeof setInterval> | undefined;
 let failed = false;
 
 const clock = new FixedStepClock({ step: STEP, maxStepsPerTick: MAX_STEPS_PER_TICK });
-const now = () => performance.now() / 1000;
+
+/**
+ * Slow motion: the clock is fed a virtual time that runs at `timeScale` of the wall clock, so it
+ * asks for proportionally fewer steps; each step is still the fixed 1/120 s (the physics and the
+ * controller see no difference).
+ */
+let timeScale: TimeScale = 1;
+let virtualTime = 0;
+let lastWall = performance.now() / 1000;
+const now = () => {
+  const wall = performance.now() / 1000;
+  virtualTime += (wall - lastWall) * timeScale;
+  lastWall = wall;
+  return virtualTime;
+};
+
+/** Scene commands waiting for the start of the next fixed step. */
+let pending: SceneCommand[] = [];
+/**
+ * Every scene command applied, with the index of the step it preceded: with the seed and the
+ * scene options this replays the run. Bounded, so a long session does not grow without end.
+ */
+const commandLog: { step: number; command: SceneCommand }[] = [];
+const COMMAND_LOG_LIMIT = 10_000;
+let commandsApplied = 0;
+
+/** Crowd layout: a grid facing +z; added characters take the next free places. */
+const SPACING_X = 2.5;
+const SPACING_Z = 3;
+let gridColumns = 1;
+let nextSlot = 0;
+/** Goal speed every character starts with (m/s): the walk CLI's default. */
+const START_SPEED = 1.0;
+const START_TURN = 0;
+let lastGoal = { speed: START_SPEED, turn: START_TURN };
 
 // Step timing accumulated between statistics reports.
 let stepWallMs = 0;
@@ -64,7 +106,15 @@ function newScene(): void {
   if (!module || !options) return;
   // The previous simulation is gone by now (see 'released'): its pthreads are back in the pool.
   sim = new Simulation(module, options.threads, options.seed);
-  sim.demoScene(options.characters);
+  gridColumns = Math.max(1, Math.ceil(Math.sqrt(options.characters)));
+  nextSlot = 0;
+  pending = [];
+  commandLog.length = 0;
+  commandsApplied = 0;
+  // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid.
+  addCharacters(options.characters, (i) => (i % 2 === 0 ? 'biped' : 'quadruped'));
+  sim.setGoal(-1, lastGoal.speed, lastGoal.turn);
+  sim.setAutoReset(autoResetSeconds);
   // Publish an initial frame (zero steps) so the first thing drawn is the scene as spawned.
   sim.step(0);
   generation += 1;
@@ -75,8 +125,108 @@ function newScene(): void {
     header: sim.renderHeader,
     threads: sim.threads,
     version: gaitlabVersion(module),
+    schema: module._gl_schema_json ? module.UTF8ToString(module._gl_schema_json()) : null,
   });
   if (!paused) clock.start(now());
+}
+
+let autoResetSeconds = 0;
+
+/** Places `count` characters on the next free grid places, centred on the origin. */
+function addCharacters(count: number, type: (i: number) => 'biped' | 'quadruped'): void {
+  if (!sim || !options) return;
+  const rows = Math.max(1, Math.ceil(options.characters / gridColumns));
+  for (let i = 0; i < count; i++) {
+    const slot = nextSlot++;
+    const x = ((slot % gridColumns) - (gridColumns - 1) / 2) * SPACING_X;
+    // Rows beyond the initial crowd continue behind it (−z), away from where the crowd walks.
+    const z = ((rows - 1) / 2 - Math.floor(slot / gridColumns)) * SPACING_Z;
+    const id = sim.spawn(Kind[type(i)], x, z, 0);
+    if (id < 0) break; // the render buffer is full
+    sim.setGoal(id, lastGoal.speed, lastGoal.turn);
+  }
+}
+
+/** Applies one scene command to the simulation (the start of a fixed step). */
+function apply(command: SceneCommand): void {
+  if (!sim) return;
+  switch (command.type) {
+    case 'setGoal':
+      if (command.id === 'all') lastGoal = { speed: command.speed, turn: command.turn };
+      sim.setGoal(command.id === 'all' ? -1 : command.id, command.speed, command.turn);
+      return;
+    case 'throwBox':
+      sim.throwBox(command.from, command.velocity, command.half);
+      return;
+    case 'drag':
+      sim.drag(command.id, command.segment, command.local, command.target);
+      return;
+    case 'endDrag':
+      sim.endDrag();
+      return;
+    case 'resetCharacter':
+      sim.resetCharacter(command.id);
+      return;
+    case 'resetFallen': {
+      const info = sim.characterInfo();
+      for (let o = 0; o < info.length; o += INFO.fields) {
+        if (info[o + INFO.fallen]) sim.resetCharacter(info[o + INFO.id]);
+      }
+      return;
+    }
+    case 'remove':
+      sim.removeCharacter(command.id);
+      return;
+    case 'add':
+      addCharacters(Math.max(0, Math.min(64, Math.floor(command.count))), () => command.kind);
+      return;
+    case 'autoReset':
+      autoResetSeconds = Math.max(0, command.seconds);
+      sim.setAutoReset(autoResetSeconds);
+      return;
+    case 'setParams': {
+      const problem = sim.setParams(command.id === 'all' ? -1 : command.id, Kind[command.character], command.json);
+      if (problem) post({ type: 'commandError', message: `the gait was not applied: ${problem}` });
+      return;
+    }
+    default: {
+      const unknown: never = command;
+      throw new Error(`unknown scene command ${JSON.stringify(unknown)}`);
+    }
+  }
+}
+
+/** Applies the queued commands, logged with the index of the step they precede. */
+function applyPending(): void {
+  if (!sim || pending.length === 0) return;
+  const step = sim.stepIndex;
+  for (const command of pending) {
+    apply(command);
+    if (commandLog.length >= COMMAND_LOG_LIMIT) commandLog.shift();
+    commandLog.push({ step, command });
+    commandsApplied++;
+  }
+  pending = [];
+}
+
+function characterStatus(): CharacterStatus[] {
+  if (!sim) return [];
+  const info = sim.characterInfo();
+  const out: CharacterStatus[] = [];
+  for (let o = 0; o < info.length; o += INFO.fields) {
+    out.push({
+      id: info[o + INFO.id],
+      type: info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped',
+      position: [info[o + INFO.x], info[o + INFO.y], info[o + INFO.z]],
+      heading: info[o + INFO.heading],
+      speed: info[o + INFO.speed],
+      fallen: info[o + INFO.fallen] !== 0,
+      fallenSeconds: info[o + INFO.fallenSeconds],
+      goal: { speed: info[o + INFO.goalSpeed], turn: info[o + INFO.goalTurn] },
+      phase: info[o + INFO.phase],
+    });
+  }
+  return out;
 }
 
 function reportStats(): void {
@@ -91,6 +241,9 @@ function reportStats(): void {
     paused,
     stepMs: stepsTimed > 0 ? stepWallMs / stepsTimed : 0,
     droppedSteps,
+    timeScale,
+    characters: characterStatus(),
+    commandsApplied,
   });
   stepWallMs = 0;
   stepsTimed = 0;
@@ -106,6 +259,7 @@ function tick(): void {
     droppedSteps += dropped;
     if (steps > 0) {
       const t0 = performance.now();
+      applyPending();
       // One call for all due steps: gl_sim_step publishes a frame once, after the last.
       sim.step(steps);
       stepWallMs += performance.now() - t0;
@@ -128,6 +282,7 @@ async function init(initial: SimOptions): Promise<void> {
     throw new Error('the page is not cross-origin isolated, so WASM threads (SharedArrayBuffer) are unavailable');
   }
   options = initial;
+  paused = initial.paused === true;
   module = await loadGaitlab(initial.wasmUrl, {
     print: (text) => console.log(`[gaitlab] ${text}`),
     printErr: (text) => console.warn(`[gaitlab] ${text}`),
@@ -164,6 +319,41 @@ function handle(command: SimCommand): void {
       resetPending = true;
       post({ type: 'release', generation });
       return;
+    case 'step':
+      // One fixed step while paused (while running, steps come from the clock).
+      if (!sim || !paused) return;
+      applyPending();
+      sim.step(Math.max(1, Math.min(1200, Math.floor(command.count ?? 1))));
+      reportStats();
+      return;
+    case 'timeScale':
+      // Account for the time so far at the old scale before switching.
+      now();
+      timeScale = command.scale;
+      reportStats();
+      return;
+    case 'scene':
+      pending.push(command.command);
+      if (paused && sim) {
+        // Nothing steps while paused: apply now and publish, so the change shows at once.
+        applyPending();
+        sim.step(0);
+        reportStats();
+      }
+      return;
+    case 'getParams':
+    case 'getPreset': {
+      let json: string | null = null;
+      let error: string | null = null;
+      try {
+        if (!sim) throw new Error('no simulation yet');
+        json = command.type === 'getParams' ? sim.getParams(command.id) : sim.presetJson(Kind[command.character]);
+      } catch (e) {
+        error = errorMessage(e);
+      }
+      post({ type: 'params', request: command.request, json, error });
+      return;
+    }
     case 'released':
       if (!resetPending || command.generation !== generation || !sim) return;
       resetPending = false;

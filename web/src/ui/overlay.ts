@@ -1,18 +1,19 @@
-// The small status panel over the canvas (frame rate, real-time factor, bodies, threads, with
-// pause and reset), and the notice shown instead of a silent blank page when something is wrong.
+// What is written over the canvas: the heads-up line (frame rate, real-time factor, characters,
+// threads, how the page runs, draw calls), a one-line help, passing messages (a refused link,
+// an imported file) and the notice shown instead of a silent blank page when something is wrong.
 
-export interface OverlayFigures {
+export interface HudFigures {
   fps: number;
   realtimeFactor: number;
-  bodies: number;
+  characters: number;
+  fallen: number;
   threads: number;
-  stepMs: number;
+  /** How the page gets its threads: see isolationMode() in main.ts. */
+  mode: string;
+  drawCalls: number;
   paused: boolean;
-}
-
-export interface OverlayActions {
-  onPauseToggle: () => void;
-  onReset: () => void;
+  timeScale: number;
+  selected: string | null;
 }
 
 function element<K extends keyof HTMLElementTagNameMap>(tag: K, className: string, text = ''): HTMLElementTagNameMap[K] {
@@ -23,60 +24,60 @@ function element<K extends keyof HTMLElementTagNameMap>(tag: K, className: strin
 }
 
 export class Overlay {
-  private readonly panel: HTMLElement;
-  private readonly fields: Record<'fps' | 'realtime' | 'bodies' | 'threads' | 'step', HTMLElement>;
-  private readonly pauseButton: HTMLButtonElement;
-  private readonly resetButton: HTMLButtonElement;
+  private readonly hud: HTMLElement;
+  private readonly line: HTMLElement;
+  private readonly messages: HTMLElement;
   private readonly notice: HTMLElement;
 
-  constructor(parent: HTMLElement, actions: OverlayActions) {
-    this.panel = element('div', 'overlay');
-    this.panel.append(element('div', 'overlay-title', 'gaitlab'));
-    const rows = element('dl', 'overlay-figures');
-    const row = (label: string, title: string) => {
-      const value = element('dd', '', '–');
-      const term = element('dt', '', label);
-      term.title = value.title = title;
-      rows.append(term, value);
-      return value;
-    };
-    this.fields = {
-      fps: row('FPS', 'rendered frames per second'),
-      realtime: row('real time', 'simulated seconds per wall-clock second (1× = real time)'),
-      bodies: row('bodies', 'rigid bodies simulated and drawn'),
-      threads: row('threads', 'threads of the simulation (navigator.hardwareConcurrency, at most 4)'),
-      step: row('step', 'wall-clock time per 1/120 s physics step, in the sim worker'),
-    };
-    this.panel.append(rows);
-
-    const buttons = element('div', 'overlay-buttons');
-    this.pauseButton = element('button', '', 'Pause');
-    this.pauseButton.type = 'button';
-    this.pauseButton.addEventListener('click', actions.onPauseToggle);
-    this.resetButton = element('button', '', 'Reset');
-    this.resetButton.type = 'button';
-    this.resetButton.addEventListener('click', actions.onReset);
-    this.setControlsEnabled(false);
-    buttons.append(this.pauseButton, this.resetButton);
-    this.panel.append(buttons);
+  constructor(parent: HTMLElement) {
+    this.hud = element('div', 'hud');
+    this.line = element('div', 'hud-line', 'gaitlab — starting…');
+    this.line.setAttribute('data-testid', 'hud');
+    const help = element(
+      'div',
+      'hud-help',
+      'click the ground: throw a box · shift-click: throw at a character · click a character: select · drag a body: pull it · ' +
+        'W/S speed · A/D turn · F follow · space pause · . step · R reset · Del remove · Esc deselect',
+    );
+    this.messages = element('div', 'messages');
+    this.messages.setAttribute('role', 'status');
+    this.hud.append(this.line, help, this.messages);
 
     this.notice = element('div', 'notice');
     this.notice.hidden = true;
     this.notice.setAttribute('role', 'alert');
-    parent.append(this.panel, this.notice);
+    parent.append(this.hud, this.notice);
   }
 
-  setControlsEnabled(enabled: boolean): void {
-    this.pauseButton.disabled = this.resetButton.disabled = !enabled;
+  show(f: HudFigures): void {
+    const rate = f.paused ? 'paused' : `${f.realtimeFactor.toFixed(2)}× real time${f.timeScale !== 1 ? ` (slow motion ${f.timeScale}×)` : ''}`;
+    const parts = [
+      `${f.fps.toFixed(0)} FPS`,
+      rate,
+      `${f.characters} characters${f.fallen ? ` (${f.fallen} down)` : ''}`,
+      `${f.threads} thread${f.threads === 1 ? '' : 's'}`,
+      f.mode,
+      `${f.drawCalls} draw calls`,
+    ];
+    if (f.selected) parts.push(`selected: ${f.selected}`);
+    this.line.textContent = parts.join(' · ');
   }
 
-  show(figures: OverlayFigures): void {
-    this.fields.fps.textContent = figures.fps.toFixed(0);
-    this.fields.realtime.textContent = figures.paused ? 'paused' : `${figures.realtimeFactor.toFixed(2)}×`;
-    this.fields.bodies.textContent = String(figures.bodies);
-    this.fields.threads.textContent = String(figures.threads);
-    this.fields.step.textContent = figures.stepMs > 0 ? `${figures.stepMs.toFixed(2)} ms` : '–';
-    this.pauseButton.textContent = figures.paused ? 'Resume' : 'Pause';
+  /**
+   * A message that stays until dismissed: refused links and files say what was wrong, so the
+   * user knows why the presets run instead.
+   */
+  message(text: string, kind: 'info' | 'problem' = 'info'): void {
+    const item = element('div', `message message-${kind}`);
+    item.append(element('span', '', text));
+    const close = element('button', 'message-close', '×');
+    close.type = 'button';
+    close.title = 'dismiss';
+    close.addEventListener('click', () => item.remove());
+    item.append(close);
+    this.messages.append(item);
+    // Informational messages go by themselves; problems stay until read.
+    if (kind === 'info') setTimeout(() => item.remove(), 6000);
   }
 
   /** Shows a problem in plain words on the page (not only in the console). */

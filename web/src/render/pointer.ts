@@ -1,0 +1,157 @@
+// What the pointer does to the scene: click a character to select it, click the ground to
+// throw a box there (shift-click throws at whatever is under the pointer, characters included),
+// press on a body and drag to pull it on a spring. Orbiting the camera keeps the remaining
+// gestures (dragging the ground, wheel, right button).
+import * as THREE from 'three';
+import type { CrowdMesh } from './crowd-mesh';
+import { pickBody, throwVelocity } from './picking';
+import type { Stage } from './stage';
+import type { SceneCommand, Vec3 } from '../sim/protocol';
+
+export interface PointerActions {
+  send(command: SceneCommand): void;
+  select(id: number | null): void;
+}
+
+/** Pointer travel (CSS pixels) below which a press and release is a click, not a drag. */
+const CLICK_SLOP = 5;
+/** Half size of thrown boxes, metres. */
+export const BOX_HALF = 0.12;
+
+const toVec3 = (v: THREE.Vector3): Vec3 => [v.x, v.y, v.z];
+
+export class PointerInteraction {
+  private readonly raycaster = new THREE.Raycaster();
+  private readonly ground = new THREE.Plane(new THREE.Vector3(0, 1, 0), 0);
+  private press: {
+    x: number;
+    y: number;
+    pointer: number;
+    hit: { id: number; segment: number; local: THREE.Vector3; point: THREE.Vector3 } | null;
+    dragging: boolean;
+    plane: THREE.Plane;
+  } | null = null;
+
+  constructor(
+    private readonly stage: Stage,
+    private readonly crowd: CrowdMesh,
+    private readonly actions: PointerActions,
+  ) {
+    const canvas = stage.renderer.domElement;
+    // Capture phase: decide before OrbitControls whether this press is ours (a body) or its.
+    canvas.addEventListener('pointerdown', (e) => this.down(e), { capture: true });
+    canvas.addEventListener('pointermove', (e) => this.move(e));
+    canvas.addEventListener('pointerup', (e) => this.up(e));
+    canvas.addEventListener('pointercancel', () => this.cancel());
+  }
+
+  private ray(event: PointerEvent): THREE.Ray {
+    const rect = this.stage.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.stage.camera);
+    return this.raycaster.ray;
+  }
+
+  /** The character body under the pointer: its owner, segment index and the point hit. */
+  private pickCharacter(ray: THREE.Ray) {
+    const { array, count } = this.crowd.matrices();
+    const hit = pickBody(ray, array, count);
+    if (!hit) return null;
+    const owner = this.crowd.owners[hit.index];
+    // A character's bodies are contiguous and in morphology order: the segment is the offset
+    // from its first body.
+    let first = hit.index;
+    while (first > 0 && this.crowd.owners[first - 1] === owner) first--;
+    return { owner, segment: hit.index - first, local: hit.local, point: hit.point, distance: hit.distance };
+  }
+
+  private down(event: PointerEvent): void {
+    if (event.button !== 0) return;
+    const ray = this.ray(event);
+    const hit = this.pickCharacter(ray);
+    const onCharacter = hit && hit.owner >= 0 && !event.shiftKey;
+    if (onCharacter) {
+      // Ours: keep OrbitControls from rotating the view while a body is held.
+      event.stopImmediatePropagation();
+      this.stage.controls.enabled = false;
+      this.stage.renderer.domElement.setPointerCapture(event.pointerId);
+    }
+    // Drag in the plane through the point held, facing the camera.
+    const normal = this.stage.camera.getWorldDirection(new THREE.Vector3()).negate();
+    this.press = {
+      x: event.clientX,
+      y: event.clientY,
+      pointer: event.pointerId,
+      hit: onCharacter ? { id: hit.owner, segment: hit.segment, local: hit.local, point: hit.point } : null,
+      dragging: false,
+      plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit?.point ?? new THREE.Vector3()),
+    };
+  }
+
+  private move(event: PointerEvent): void {
+    const press = this.press;
+    if (!press || event.pointerId !== press.pointer || !press.hit) return;
+    if (!press.dragging && Math.hypot(event.clientX - press.x, event.clientY - press.y) < CLICK_SLOP) return;
+    press.dragging = true;
+    const target = this.ray(event).intersectPlane(press.plane, new THREE.Vector3());
+    if (!target) return;
+    target.y = Math.max(target.y, 0.02); // never pull into the ground
+    this.actions.send({ type: 'drag', id: press.hit.id, segment: press.hit.segment, local: toVec3(press.hit.local), target: toVec3(target) });
+  }
+
+  private up(event: PointerEvent): void {
+    const press = this.press;
+    if (!press || event.pointerId !== press.pointer) return;
+    this.press = null;
+    this.stage.controls.enabled = true;
+    if (press.dragging) {
+      this.actions.send({ type: 'endDrag' });
+      return;
+    }
+    if (Math.hypot(event.clientX - press.x, event.clientY - press.y) >= CLICK_SLOP) return; // an orbit
+    if (press.hit) {
+      this.actions.select(press.hit.id);
+      return;
+    }
+    // A click on the ground (or a shift-click anywhere): throw a box at that point.
+    const ray = this.ray(event);
+    const hit = event.shiftKey ? this.pickCharacter(ray) : null;
+    const target = hit ? hit.point : ray.intersectPlane(this.ground, new THREE.Vector3());
+    if (target) this.throwAt(target);
+  }
+
+  private cancel(): void {
+    if (this.press?.dragging) this.actions.send({ type: 'endDrag' });
+    this.press = null;
+    this.stage.controls.enabled = true;
+  }
+
+  /** Throws a box from just in front of the camera so that it lands on `target`. */
+  throwAt(target: THREE.Vector3): void {
+    const camera = this.stage.camera.position;
+    const from = camera.clone().add(target.clone().sub(camera).normalize().multiplyScalar(1.0));
+    const velocity = throwVelocity(from, target);
+    this.actions.send({ type: 'throwBox', from: toVec3(from), velocity: toVec3(velocity), half: BOX_HALF });
+  }
+}
+
+/**
+ * The selected character's marker: a flat ring at its feet, one extra draw call whatever the
+ * crowd's size.
+ */
+export class SelectionRing {
+  readonly mesh: THREE.Mesh;
+  constructor() {
+    this.mesh = new THREE.Mesh(
+      new THREE.RingGeometry(0.45, 0.55, 48).rotateX(-Math.PI / 2),
+      new THREE.MeshBasicMaterial({ color: 0xff7a1a, transparent: true, opacity: 0.85, depthWrite: false }),
+    );
+    this.mesh.visible = false;
+    this.mesh.renderOrder = 1;
+  }
+
+  place(position: THREE.Vector3 | null): void {
+    this.mesh.visible = position !== null;
+    if (position) this.mesh.position.set(position.x, 0.01, position.z);
+  }
+}

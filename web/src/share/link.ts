@@ -1,0 +1,163 @@
+// A gait in a link: the page's URL hash carries one character's gait, versioned, compressed and
+// checked, so that opening the link reproduces exactly the same parameters.
+//
+//   #gait=1.<chars>.<data>
+//
+//   1        the link format's version (LINK_VERSION); the gait inside carries the parameter
+//            schema's version, which parseGait() migrates if it is older
+//   <chars>  how many characters <data> has: a link cut short (a chat client wrapping it, a
+//            partial copy) is recognised as truncated rather than as some other gait
+//   <data>   base64url of: CRC-32 of the JSON (4 bytes, big-endian), then the gait file's JSON
+//            (without "meta") compressed with deflate-raw (CompressionStream)
+//
+// Decoding refuses, with a GaitError naming the problem: a truncated link, corrupt data (bad
+// characters, data that does not inflate, a checksum mismatch, JSON that is not a gait), a link
+// or payload that is too long, an unknown link or schema version, values out of bounds or not
+// finite. The page then shows the message and runs with the presets.
+import { GaitError, parseGait, type GaitFile, type Migration, type ParamSchema, MIGRATIONS } from './gait-file';
+
+export const LINK_VERSION = 1;
+export const HASH_KEY = 'gait';
+/**
+ * Longest link data accepted. A full quadruped gait compresses to about 1–2 kB; browsers and
+ * chat clients start to cut links at a few thousand characters, so anything much longer was not
+ * made by this page.
+ */
+export const MAX_LINK_CHARS = 8192;
+/** Most bytes the data may inflate to (guards against a small link that inflates to gigabytes). */
+export const MAX_JSON_BYTES = 256 * 1024;
+
+// ---- base64url (RFC 4648 §5, no padding) ------------------------------------------------------
+
+export function toBase64Url(bytes: Uint8Array): string {
+  let binary = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(binary).replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
+}
+
+export function fromBase64Url(text: string): Uint8Array {
+  if (!/^[A-Za-z0-9_-]*$/.test(text)) throw new GaitError('corrupt', 'the link data has characters that base64url does not use');
+  if (text.length % 4 === 1) throw new GaitError('corrupt', 'the link data has an impossible length for base64url');
+  const binary = atob(text.replace(/-/g, '+').replace(/_/g, '/') + '='.repeat((4 - (text.length % 4)) % 4));
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
+  return bytes;
+}
+
+// ---- CRC-32 (IEEE 802.3, as zlib) ---------------------------------------------------------------
+
+const CRC_TABLE = (() => {
+  const table = new Uint32Array(256);
+  for (let n = 0; n < 256; n++) {
+    let c = n;
+    for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+    table[n] = c >>> 0;
+  }
+  return table;
+})();
+
+export function crc32(bytes: Uint8Array): number {
+  let c = 0xffffffff;
+  for (const b of bytes) c = CRC_TABLE[(c ^ b) & 0xff] ^ (c >>> 8);
+  return (c ^ 0xffffffff) >>> 0;
+}
+
+// ---- deflate-raw through the platform's streams ------------------------------------------------
+
+async function deflateRaw(bytes: Uint8Array): Promise<Uint8Array> {
+  const stream = new Blob([bytes as BlobPart]).stream().pipeThrough(new CompressionStream('deflate-raw'));
+  return new Uint8Array(await new Response(stream).arrayBuffer());
+}
+
+/** Inflates, stopping with 'too-long' past `limit` bytes; any stream error is corrupt data. */
+async function inflateRaw(bytes: Uint8Array, limit: number): Promise<Uint8Array> {
+  const reader = new Blob([bytes as BlobPart]).stream().pipeThrough(new DecompressionStream('deflate-raw')).getReader();
+  const chunks: Uint8Array[] = [];
+  let total = 0;
+  try {
+    for (;;) {
+      const { done, value } = await reader.read();
+      if (done) break;
+      total += value.length;
+      if (total > limit) {
+        await reader.cancel().catch(() => {});
+        throw new GaitError('too-long', `the link's gait inflates to more than ${limit / 1024} KiB`);
+      }
+      chunks.push(value);
+    }
+  } catch (error) {
+    if (error instanceof GaitError) throw error;
+    throw new GaitError('corrupt', 'the link data is damaged: it does not decompress');
+  }
+  const out = new Uint8Array(total);
+  let offset = 0;
+  for (const c of chunks) {
+    out.set(c, offset);
+    offset += c.length;
+  }
+  return out;
+}
+
+// ---- the link ----------------------------------------------------------------------------------
+
+/** The hash (with its leading '#') that carries `gait`. */
+export async function encodeGaitHash(gait: GaitFile): Promise<string> {
+  // "meta" stays out of links: it is provenance for files, and would only make links longer.
+  const json = JSON.stringify({ format: gait.format, version: gait.version, character: gait.character, params: gait.params });
+  const text = new TextEncoder().encode(json);
+  const packed = await deflateRaw(text);
+  const bytes = new Uint8Array(4 + packed.length);
+  new DataView(bytes.buffer).setUint32(0, crc32(text));
+  bytes.set(packed, 4);
+  const data = toBase64Url(bytes);
+  return `#${HASH_KEY}=${LINK_VERSION}.${data.length}.${data}`;
+}
+
+/** Whether a URL hash carries a gait at all (a hash without one is not an error). */
+export function hasGait(hash: string): boolean {
+  return new URLSearchParams(hash.replace(/^#/, '')).has(HASH_KEY);
+}
+
+/**
+ * The gait a URL hash carries, checked against the schema; throws a GaitError saying what is
+ * wrong. Call only when hasGait(hash).
+ */
+export async function decodeGaitHash(
+  hash: string,
+  schema: ParamSchema,
+  migrations: Readonly<Record<number, Migration>> = MIGRATIONS,
+): Promise<GaitFile> {
+  const value = new URLSearchParams(hash.replace(/^#/, '')).get(HASH_KEY) ?? '';
+  if (value.length > MAX_LINK_CHARS + 32) {
+    throw new GaitError('too-long', `the link's gait is ${value.length} characters long; at most ${MAX_LINK_CHARS} are accepted`);
+  }
+  if (value === '') throw new GaitError('truncated', 'the link is truncated: it names a gait but carries none');
+  const match = /^(\d+)(?:\.(\d*)(?:\.(.*))?)?$/s.exec(value);
+  if (!match) throw new GaitError('corrupt', 'the link does not have the form gait=<version>.<length>.<data>');
+  const [, versionText, lengthText, data] = match;
+  const version = Number(versionText);
+  if (version !== LINK_VERSION) {
+    throw new GaitError('unknown-version', `the link is of format version ${version}; this page reads version ${LINK_VERSION}`);
+  }
+  if (!lengthText || data === undefined) throw new GaitError('truncated', 'the link is truncated: its data is missing');
+  const declared = Number(lengthText);
+  if (declared > MAX_LINK_CHARS) {
+    throw new GaitError('too-long', `the link's gait is ${declared} characters long; at most ${MAX_LINK_CHARS} are accepted`);
+  }
+  if (data.length < declared) {
+    throw new GaitError('truncated', `the link is truncated: it has ${data.length} of its ${declared} characters of data`);
+  }
+  if (data.length > declared) throw new GaitError('corrupt', `the link has ${data.length - declared} characters more data than it declares`);
+  const bytes = fromBase64Url(data);
+  if (bytes.length < 5) throw new GaitError('corrupt', 'the link data is too short to hold a gait');
+  const expected = new DataView(bytes.buffer, bytes.byteOffset).getUint32(0);
+  const text = await inflateRaw(bytes.subarray(4), MAX_JSON_BYTES);
+  if (crc32(text) !== expected) throw new GaitError('corrupt', 'the link data is damaged: its checksum does not match');
+  let parsed: unknown;
+  try {
+    parsed = JSON.parse(new TextDecoder('utf-8', { fatal: true }).decode(text));
+  } catch {
+    throw new GaitError('corrupt', 'the link data is not a JSON gait');
+  }
+  return parseGait(parsed, schema, migrations);
+}

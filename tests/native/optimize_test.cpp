@@ -327,8 +327,7 @@ TEST(OptimizeSearch, GreedyKeepsTheBestAndNeverGetsWorse) {
     last = gen.bestObjective;
   }
   // The best parameters score what the search says they score.
-  const ObjectiveTerms again = evaluate(gait::Character::Biped, opt->best(), opt->options().objective,
-                                        static_cast<uint32_t>(99 * 2654435761u + 12345u));
+  const ObjectiveTerms again = opt->score(opt->best());
   EXPECT_EQ(again.total, opt->bestObjective());
 }
 

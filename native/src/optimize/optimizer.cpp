@@ -33,6 +33,13 @@ Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start
   for (size_t i = 0; i < bestVector_.size(); ++i) bestVector_[i] = std::clamp(bestVector_[i], lo_[i], hi_[i]);
 }
 
+ObjectiveTerms Optimizer::score(const gait::GaitParams& params) const {
+  // The same episodes (start states, push phases) for every candidate of every generation, so
+  // objectives are comparable; they follow from the search seed.
+  const uint32_t episodeSeed = static_cast<uint32_t>(options_.seed * 2654435761u + 12345u);
+  return evaluate(options_.character, params, options_.objective, episodeSeed);
+}
+
 Generation Optimizer::step() {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<std::vector<double>> points = propose();
@@ -40,16 +47,13 @@ Generation Optimizer::step() {
   std::vector<gait::GaitParams> candidates(k, start_);
   for (int i = 0; i < k; ++i) gait::fromVector(options_.character, points[i], &candidates[i]);
 
-  // The same episodes (start states, push phases) for every candidate of every generation, so
-  // objectives are comparable; they follow from the search seed.
-  const uint32_t episodeSeed = static_cast<uint32_t>(options_.seed * 2654435761u + 12345u);
   std::vector<ObjectiveTerms> results(k);
   std::atomic<int> next{0};
   // One task per evaluation: each thread takes the next candidate until none are left (falls
   // end episodes early, so evaluations differ in cost). Results land in their own slot.
   pool_.parallelFor(pool_.size(), [&](int, int, int) {
     for (int i = next.fetch_add(1); i < k; i = next.fetch_add(1))
-      results[i] = evaluate(options_.character, candidates[i], options_.objective, episodeSeed);
+      results[i] = score(candidates[i]);
   });
   evaluations_ += k;
   ++generation_;

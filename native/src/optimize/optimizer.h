@@ -77,6 +77,10 @@ class Optimizer {
   // the thesis used this re-evaluation as its determinism check).
   int determinismMismatches() const { return mismatches_; }
 
+  // The objective of any parameter set on this search's episodes (the same start states and
+  // push phases every candidate gets); e.g. the start's, for comparison.
+  ObjectiveTerms score(const gait::GaitParams& params) const;
+
   static std::unique_ptr<Optimizer> create(const SearchOptions& options, const gait::GaitParams& start);
 
  protected:

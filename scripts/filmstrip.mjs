@@ -1,0 +1,121 @@
+// A gait as a filmstrip from the real renderer: the demo page in headless Chromium, one
+// character of a type, paused and stepped a fixed number of 120 Hz steps between frames, seen
+// from the side while the camera follows it. The frames are laid out in one row, each labelled
+// with its simulated time, and saved as one PNG (the README's gait sequences).
+//
+//   node scripts/filmstrip.mjs --type biped [--frames 8] [--every 12] [--warmup 480]
+//                              [--speed M_S] [--out docs/images/biped-gait.png]
+//
+// Needs the WASM build (npm run build) and Chromium (CHROMIUM=/path overrides /usr/bin/chromium).
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { parseArgs } from 'node:util';
+import { chromium } from 'playwright-core';
+import { startServer } from './serve.mjs';
+
+const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+
+function usage(message) {
+  console.error(`filmstrip: ${message}\nusage: node scripts/filmstrip.mjs --type biped|quadruped ` +
+    '[--frames N] [--every STEPS] [--warmup STEPS] [--speed M_S] [--out FILE.png]');
+  process.exit(2);
+}
+
+let args;
+try {
+  ({ values: args } = parseArgs({
+    options: {
+      type: { type: 'string' },
+      frames: { type: 'string', default: '8' },
+      every: { type: 'string', default: '12' },
+      warmup: { type: 'string', default: '480' },
+      speed: { type: 'string' },
+      out: { type: 'string' },
+    },
+  }));
+} catch (error) {
+  usage(error.message);
+}
+if (args.type !== 'biped' && args.type !== 'quadruped') usage('--type must be biped or quadruped');
+const count = (name, min, max) => {
+  const v = Number(args[name]);
+  if (!Number.isInteger(v) || v < min || v > max) usage(`--${name} must be an integer in [${min}, ${max}]`);
+  return v;
+};
+const frames = count('frames', 1, 24), every = count('every', 1, 1200), warmup = count('warmup', 0, 12000);
+const speed = args.speed === undefined ? null : Number(args.speed);
+if (speed !== null && !(Number.isFinite(speed) && speed >= 0 && speed <= 3)) usage('--speed must be in [0, 3] m/s');
+const out = path.resolve(args.out ?? path.join(repoDir, 'docs', 'images', `${args.type}-gait.png`));
+
+const server = await startServer({ port: 0, quiet: true });
+const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'gaitlab-filmstrip-'));
+const context = await chromium.launchPersistentContext(profile, {
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  headless: true,
+  viewport: { width: 900, height: 640 },
+  args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--no-first-run'],
+});
+try {
+  const page = await context.newPage();
+  page.on('pageerror', (error) => console.error(`page error: ${error.message}`));
+  // The mixed crowd alternates biped, quadruped, …: one character for a biped, two for a
+  // quadruped (the other then walks beside it, a grid place away).
+  const crowd = args.type === 'biped' ? 1 : 2;
+  await page.goto(`${server.url}?characters=${crowd}&paused=1&threads=1`, { waitUntil: 'load' });
+  await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null,
+    { timeout: 120_000, polling: 250 });
+  const error = await page.evaluate(() => window.gaitlab.stats().error);
+  if (error) throw new Error(`the page shows a problem: ${error}`);
+
+  let simSteps = 0;
+  const stepBy = async (n) => {
+    if (n === 0) return;
+    simSteps += n;
+    await page.evaluate((k) => window.gaitlab.step(k), n);
+    await page.waitForFunction((t) => Math.abs(window.gaitlab.stats().simTime - t) < 1e-6, simSteps / 120,
+      { timeout: 120_000, polling: 50 });
+    await page.waitForTimeout(400); // the next animation frames draw the newest state
+  };
+  await stepBy(1);
+  const characters = await page.evaluate(() => window.gaitlab.characters());
+  const subject = characters.find((c) => c.type === args.type);
+  if (!subject) throw new Error(`no ${args.type} in the scene`);
+  if (speed !== null) await page.evaluate(([id, v]) => window.gaitlab.setGoal(id, { speed: v, turn: 0 }), [subject.id, speed]);
+  await page.evaluate((id) => window.gaitlab.select(id), subject.id);
+  // Only the scene: the panels and the heads-up line would cover the character.
+  await page.addStyleTag({ content: 'body > :not(canvas) { visibility: hidden !important; }' });
+  await page.keyboard.press('f'); // follow the selected character (the demo's key)
+  await stepBy(warmup);
+  // The camera follows the selection; seen from its left side (+x, characters walk along +z).
+  const side = args.type === 'biped' ? [3.4, 0.35, 0] : [2.4, 0.25, 0];
+  await page.evaluate((offset) => window.gaitlab.viewFrom(offset), side);
+
+  const shots = [];
+  for (let f = 0; f < frames; ++f) {
+    if (f > 0) await stepBy(every);
+    await page.waitForTimeout(900); // the follow camera eases onto the character
+    const at = await page.evaluate((id) => window.gaitlab.screenPosition(id), subject.id);
+    if (!at) throw new Error('the character is not on screen');
+    const w = 260, h = 380;
+    const clip = { x: Math.max(0, at.x - w / 2), y: Math.max(0, at.y - h * 0.32), width: w, height: h };
+    shots.push({ png: (await page.screenshot({ clip })).toString('base64'), t: simSteps / 120 });
+    process.stderr.write(`frame ${f + 1}/${frames} at ${(simSteps / 120).toFixed(3)} s\n`);
+  }
+
+  // One row of frames, labelled, drawn by the browser itself.
+  const sheet = await context.newPage();
+  await sheet.setViewportSize({ width: 260 * frames, height: 410 });
+  await sheet.setContent(`<body style="margin:0;display:flex;font:13px system-ui;background:#fff">${shots
+    .map((s) => `<figure style="margin:0;width:260px"><img src="data:image/png;base64,${s.png}" style="display:block">` +
+      `<figcaption style="text-align:center;padding:4px">t = ${s.t.toFixed(2)} s</figcaption></figure>`)
+    .join('')}</body>`);
+  fs.mkdirSync(path.dirname(out), { recursive: true });
+  await sheet.screenshot({ path: out, fullPage: true });
+  console.log(`filmstrip: ${path.relative(repoDir, out)} (${frames} frames, ${every} steps apart, from ${(warmup / 120).toFixed(2)} s)`);
+} finally {
+  await context.close();
+  await server.close();
+  fs.rmSync(profile, { recursive: true, force: true });
+}

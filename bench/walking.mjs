@@ -39,7 +39,7 @@ const TURNS = [
   { speed: 0.8, turn: 0.3 },
   { speed: 0.5, turn: -0.3 },
 ];
-const PUSHES = [10, 20, 30, 45, 60, 80];  // N·s
+const PUSHES = [10, 15, 20, 25, 30, 40, 60, 80];  // N·s, lateral at the leg frame
 const PUSH_EVERY = 2.5;                   // s: 20 pushes in 52 s
 
 function walk(character, extra, wasm = false) {

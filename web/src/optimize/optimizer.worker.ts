@@ -5,13 +5,14 @@
 // gl_opt_step runs a whole generation — K episodes of several simulated seconds each — and
 // cannot be cut into pieces. Measured in headless Chromium on the 2-core development machine
 // (node bench/optimize-panel.mjs, bench/results/optimize-panel.json), a generation of the
-// default search (10 biped candidates from the preset, 6.7 s episodes) took 1.0 s to 4.1 s,
-// 1.5 s to 1.9 s on average, at 1 or 2 threads; one episode is therefore 0.1 s or more (less
-// when a candidate falls early), against the 8.3 ms the sim worker has per fixed step. Run in
-// the sim worker, a generation would stop the crowd for 120 to 500 steps, and even one
-// evaluation at a time (which the C API does not offer) for a dozen; a time budget between
-// crowd steps cannot help when the smallest piece of work is that large. Here the crowd keeps
-// its real-time loop and the two share the cores through the operating system.
+// default search (10 biped candidates from the preset, 6.7 s episodes; the machine's load
+// average 11–14) took 0.7 s to 2.8 s: 1.8 s on average at 1 thread, 1.2 s at 2; so one
+// episode takes about 0.1 s or more (less when a candidate falls early), against the 8.3 ms
+// the sim worker has per fixed step. Run in the sim worker, a generation would stop the crowd
+// for 80 to 340 steps, and even one evaluation at a time (which the C API does not offer) for
+// a dozen; a time budget between crowd steps cannot help when the smallest piece of work is
+// that large. Here the crowd keeps its real-time loop and the two share the cores through the
+// operating system.
 // The cost is a second module instance (its 256 MB of shared memory and its pthread pool, as
 // the performance page's worker has), for as long as a search runs: the panel terminates this
 // worker when the search ends or is stopped. Terminating is also what makes Stop immediate

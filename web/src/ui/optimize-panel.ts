@@ -23,6 +23,7 @@ import {
   type OptimizeOptions,
   type OptimizerSchema,
 } from '../optimize/options';
+import { fitRange, tickLabels } from '../optimize/chart';
 import type { GenerationReport, OptimizerCommand, OptimizerEvent } from '../optimize/protocol';
 import { parseGait, type CharacterType, type GaitFile, type ParamSchema } from '../share/gait-file';
 import { encodeGaitHash } from '../share/link';
@@ -91,13 +92,6 @@ function el<K extends keyof HTMLElementTagNameMap>(tag: K, props: Partial<HTMLEl
  * often than every 2 s, which would show nothing but standing up.
  */
 const learnerLoop = (o: OptimizeOptions) => Math.max(2, o.settings.seconds ?? 0);
-
-/** The chart's y range: the values with a margin (a flat line gets one of its own size). */
-function fitRange(min: number, max: number): [number, number] {
-  if (!Number.isFinite(min) || !Number.isFinite(max)) return [0, 1];
-  const pad = max > min ? (max - min) * 0.08 : Math.max(Math.abs(max) * 0.05, 1e-3);
-  return [min - pad, max + pad];
-}
 
 const fmt = (x: number) => (x === 0 ? '0' : Math.abs(x) >= 1000 || Math.abs(x) < 0.01 ? x.toExponential(2) : x.toPrecision(4));
 /** The chart's line, and the learner's ring in the scene (main.ts): one colour for one idea. */
@@ -460,7 +454,11 @@ export class OptimizePanel {
         // as they are a fall penalty's hundred, and a log scale's whole decades flatten the former.
         scales: { x: { time: false }, y: { range: (_u, min, max) => fitRange(min, max) } },
         // Whole generations on the x axis.
-        axes: [{ label: 'generation', size: 34, labelSize: 14, incrs: [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10_000, 100_000] }, { size: 46 }],
+        axes: [
+          { label: 'generation', size: 34, labelSize: 14, incrs: [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10_000, 100_000] },
+          // As many decimals as the ticks need to differ, and the width the labels take.
+          { values: (_u, splits) => tickLabels(splits), size: (_u, values) => 14 + 7 * Math.max(3, ...(values ?? []).map((v) => v.length)) },
+        ],
         series: [{ label: 'generation' }, { label: 'best objective', stroke: LEARNER_COLOUR, width: 2, points: { show: true, size: 5, fill: LEARNER_COLOUR } }],
       },
       data as uPlot.AlignedData,

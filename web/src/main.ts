@@ -407,8 +407,9 @@ if (!window.crossOriginIsolated) {
           wasmUrl: options.wasmUrl,
           paramSchema: JSON.parse(schemaJson),
           optimizerSchema: JSON.parse(optimizerJson) as OptimizerSchema,
-          // One thread fewer than the cores (at least one): the crowd's real-time loop keeps
-          // the other (README, the optimize panel: measured both ways).
+          // One thread fewer than the cores (at least one), so the search does not take the
+          // core the crowd's real-time loop and the renderer need; the panel lets one choose
+          // more (bench/optimize-panel.mjs measures both ways).
           defaultThreads: Math.max(1, defaultThreads(navigator.hardwareConcurrency) - 1),
           selected: selectedStatus,
           gaitJson: (id) => client!.getParams(id),

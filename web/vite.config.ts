@@ -127,8 +127,9 @@ export default defineConfig({
     format: 'es',
   },
   optimizeDeps: {
-    // Pre-bundle three up front so the dev server never reloads the page mid-run to add it.
-    include: ['three', 'three/examples/jsm/controls/OrbitControls.js'],
+    // Pre-bundle three (and uPlot: the optimize panel, the performance page) up front so the dev
+    // server never reloads the page mid-run to add it.
+    include: ['three', 'three/examples/jsm/controls/OrbitControls.js', 'uplot'],
   },
   build: {
     outDir: path.join(repoDir, 'build', 'web'),

@@ -41,3 +41,32 @@ TEST(OptimizeCApi, RefusesBadInputWithAMessage) {
   EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, R"({"speeds": []})"), nullptr);
   EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, "[1]"), nullptr);
 }
+
+TEST(OptimizeCApi, RefusesSpeedsOutOfRangeAndFractionalStarts) {
+  EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, R"({"speeds": [1.0, 9.0]})"), nullptr);
+  EXPECT_NE(std::string(gl_last_error()).find("speeds: 9.0 is outside"), std::string::npos) << gl_last_error();
+  EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, R"({"starts": 2.5})"), nullptr);
+  EXPECT_NE(std::string(gl_last_error()).find("starts: 2.5 is not a whole number"), std::string::npos) << gl_last_error();
+}
+
+// The optimize panel checks its form against this table before it starts a search.
+TEST(OptimizeCApi, DescribesItsSettingsWithBoundsAndDefaults) {
+  const json j = json::parse(gl_opt_settings_json());
+  ASSERT_TRUE(j["settings"].is_array());
+  std::string names;
+  for (const json& s : j["settings"]) {
+    names += s["name"].get<std::string>() + " ";
+    EXPECT_LE(s["min"].get<double>(), s["default"].get<double>()) << s.dump();
+    EXPECT_GE(s["max"].get<double>(), s["default"].get<double>()) << s.dump();
+    EXPECT_FALSE(s["description"].get<std::string>().empty());
+    EXPECT_EQ(s["integer"].get<bool>(), s["name"] == "starts");
+    // Every setting it lists is one gl_opt_create accepts at its default.
+    void* opt = gl_opt_create(GL_KIND_BIPED, 0, 2, 1, 1, nullptr, json{{s["name"], s["default"]}}.dump().c_str());
+    EXPECT_NE(opt, nullptr) << gl_last_error();
+    gl_opt_destroy(opt);
+  }
+  EXPECT_EQ(names, "wd wv wa wr fallPenalty seconds warmup starts startImpulse turnRate pushImpulse pushEvery ");
+  EXPECT_EQ(j["speeds"]["min"], -5.0);
+  EXPECT_EQ(j["speeds"]["max"], 5.0);
+  EXPECT_EQ(j["speeds"]["default"], json::array({1.0}));
+}

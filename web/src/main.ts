@@ -19,6 +19,8 @@ import {
 import { SimClient } from './sim/sim-client';
 import { ControlPanel } from './ui/control-panel';
 import { GaitSession } from './ui/gait-session';
+import { LEARNER_COLOUR, OptimizePanel, type OptimizeStatus } from './ui/optimize-panel';
+import type { OptimizeForm, OptimizerSchema } from './optimize/options';
 import { Overlay } from './ui/overlay';
 import { RateMeter } from './ui/rate-meter';
 import type { GaitFile } from './share/gait-file';
@@ -70,6 +72,30 @@ export interface GaitlabHook {
   viewFrom(offset: Vec3): void;
   /** Screen position (CSS pixels) of character `id`'s root body, for tests that click it. */
   screenPosition(id: number): { x: number; y: number } | null;
+
+  // ---- The optimize panel (issue 6). These drive the panel itself, as its buttons do. ----
+
+  /**
+   * Starts a search as the panel's Start button does, after writing `form` into the panel's
+   * fields (as text, as if typed; fields left out keep their values). Field names: character
+   * ('biped' | 'quadruped'), method ('greedy' | 'cmaes'), start ('preset' | 'selected'),
+   * generations, candidates, seed, threads, speeds ("0.5, 1"), and every objective setting by
+   * its gl_opt_settings_json name (seconds, warmup, starts, turnRate, wd, …). Resolves with
+   * optimizeStatus() when the search ends (state 'done', or 'stopped' after stopOptimize());
+   * rejects with the panel's message if the form is refused (every problem, each naming its
+   * field) or the search fails.
+   */
+  optimize(form?: OptimizeForm): Promise<OptimizeStatus>;
+  /** The panel's state: progress, history of the best objective, the chart's point count, the result. */
+  optimizeStatus(): OptimizeStatus;
+  /** The panel's Stop: ends the search at once, keeping the best of the finished generations. */
+  stopOptimize(): void;
+  /** The panel's Apply: the result to the selected character or to every character of its type. */
+  applyOptimizeResult(target: 'selected' | 'all'): Promise<void>;
+  /** The panel's Share: a link to this page carrying the result. */
+  optimizeShareUrl(): Promise<string>;
+  /** The learner's id (the character walking the best so far), or null. */
+  learner(): number | null;
 }
 
 declare global {
@@ -103,7 +129,12 @@ const realtimeMeter = new RateMeter();
 let frames = 0;
 const crowd = new CrowdMesh();
 const ring = new SelectionRing();
+/** Marks the optimize panel's learner: a wider ring, in the chart's colour. */
+const learnerRing = new SelectionRing(new THREE.Color(LEARNER_COLOUR).getHex(), 0.7);
 let gaits: GaitSession | null = null;
+let optimizer: OptimizePanel | null = null;
+/** The learner's id as the worker last reported it. */
+let learnerId: number | null = null;
 
 /**
  * How the page runs: WASM threads need cross-origin isolation, which the server's headers give
@@ -192,6 +223,24 @@ const hook: GaitlabHook = {
   pause: () => client?.send({ type: 'pause' }),
   resume: () => client?.send({ type: 'resume' }),
   viewFrom: (offset) => stage?.viewFrom(new THREE.Vector3(...offset)),
+  optimize: (form) => {
+    if (!optimizer) return Promise.reject(new Error(optimizerMissing()));
+    return optimizer.start(form);
+  },
+  optimizeStatus: () => {
+    if (!optimizer) throw new Error(optimizerMissing());
+    return optimizer.status();
+  },
+  stopOptimize: () => optimizer?.stop(),
+  applyOptimizeResult: async (target) => {
+    if (!optimizer) throw new Error(optimizerMissing());
+    return optimizer.applyResult(target);
+  },
+  optimizeShareUrl: async () => {
+    if (!optimizer) throw new Error(optimizerMissing());
+    return optimizer.shareUrl();
+  },
+  learner: () => learnerId,
   screenPosition: (id) => {
     const index = crowd.firstBodyOf(id);
     if (index < 0 || !stage) return null;
@@ -202,11 +251,17 @@ const hook: GaitlabHook = {
 };
 window.gaitlab = Object.freeze(hook);
 
+/** Why window.gaitlab's optimize functions cannot work (the panel is made with the first scene). */
+function optimizerMissing(): string {
+  if (!state.ready && !state.error) return 'the page is still starting';
+  return 'this build of the module has no optimiser settings (gl_opt_settings_json) or no parameter schema';
+}
+
 let stage: Stage | null = null;
 let pointer: PointerInteraction | null = null;
 try {
   stage = new Stage(canvas);
-  stage.scene.add(crowd.group, ring.mesh);
+  stage.scene.add(crowd.group, ring.mesh, learnerRing.mesh);
   pointer = new PointerInteraction(stage, crowd, { send, select });
 } catch (error) {
   showError('WebGL is not available', `${errorMessage(error)}\nThe demo needs a browser with WebGL 2.`);
@@ -277,6 +332,7 @@ if (!window.crossOriginIsolated) {
       select(null);
       console.info(`gaitlab ${info.version}: scene ${info.generation}, ${reader.capacity} body slots, ${info.threads} threads`);
       if (!gaits) gaits = GaitSession.create(info.schema, client!, panel.gaitFolder, overlay);
+      if (!optimizer && gaits && info.optimizerSchema) optimizer = createOptimizePanel(info.schema!, info.optimizerSchema);
     },
     onRelease: () => crowd.detach(),
     onStats: (stats) => {
@@ -284,6 +340,7 @@ if (!window.crossOriginIsolated) {
       state.paused = stats.paused;
       state.timeScale = stats.timeScale;
       state.characters = stats.characters;
+      learnerId = stats.learner;
       panel.setPaused(stats.paused);
       // The selected character may have been removed.
       if (state.selected !== null && !selectedStatus()) select(null);
@@ -309,12 +366,22 @@ if (!window.crossOriginIsolated) {
       }
     }
     const index = state.selected === null ? -1 : crowd.firstBodyOf(state.selected);
+    const following = index >= 0 && state.follow;
     if (index >= 0) {
       crowd.bodyPosition(index, focus);
       ring.place(focus);
       if (state.follow) activeStage.follow(focus, dt);
     } else {
       ring.place(null);
+    }
+    const learnerIndex = learnerId === null ? -1 : crowd.firstBodyOf(learnerId);
+    if (learnerIndex >= 0) {
+      crowd.bodyPosition(learnerIndex, focus);
+      learnerRing.place(focus);
+      // The camera follows the selected character if asked to, else the learner if asked to.
+      if (!following && optimizer?.followLearner) activeStage.follow(focus, dt);
+    } else {
+      learnerRing.place(null);
     }
     if (crowd.frame) {
       state.ready = true;
@@ -329,10 +396,50 @@ if (!window.crossOriginIsolated) {
   };
 
   const resize = () => {
-    // Keep the crowd clear of the control panel on wide windows.
+    // Keep the crowd clear of the control panel (and the optimize panel, open) on wide windows.
     activeStage.rightInset = window.innerWidth > 700 ? panel.gui.domElement.offsetWidth + 10 : 0;
+    activeStage.leftInset = window.innerWidth > 900 && optimizer?.element.open ? optimizer.element.offsetWidth + 10 : 0;
     activeStage.resize();
   };
+
+  /** The optimize panel, once the module has said what the optimiser accepts. */
+  function createOptimizePanel(schemaJson: string, optimizerJson: string): OptimizePanel | null {
+    try {
+      return new OptimizePanel(
+        {
+          wasmUrl: options.wasmUrl,
+          paramSchema: JSON.parse(schemaJson),
+          optimizerSchema: JSON.parse(optimizerJson) as OptimizerSchema,
+          // One thread fewer than the cores (at least one), so the search does not take the
+          // core the crowd's real-time loop and the renderer need; the panel lets one choose
+          // more (bench/optimize-panel.mjs measures both ways).
+          defaultThreads: Math.max(1, defaultThreads(navigator.hardwareConcurrency) - 1),
+          selected: selectedStatus,
+          gaitJson: (id) => client!.getParams(id),
+          showLearner: (gait, goal, loopSeconds) =>
+            send({ type: 'learner', character: gait.character, json: JSON.stringify(gait), speed: goal.speed, turn: goal.turn, loopSeconds }),
+          apply: async (gait, target) => {
+            if (!gaits) throw new Error('this build has no parameter schema');
+            if (target === 'all') {
+              select(null);
+              await gaits.applyGait(gait, 'all');
+              return `every ${gait.character}`;
+            }
+            const chosen = selectedStatus();
+            if (!chosen) throw new Error('no character is selected (click one, or apply to every character of the type)');
+            if (chosen.type !== gait.character) throw new Error(`the selected character is a ${chosen.type}; the result is a ${gait.character}'s gait`);
+            await gaits.applyGait(gait, chosen.id);
+            return `${chosen.type} #${chosen.id}`;
+          },
+          onResize: () => resize(),
+        },
+        overlay.column,
+      );
+    } catch (error) {
+      overlay.message(`The optimize panel could not be made: ${errorMessage(error)}`, 'problem');
+      return null;
+    }
+  }
   window.addEventListener('resize', resize);
   window.addEventListener('keydown', onKey);
   resize();

@@ -239,7 +239,12 @@ void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int thr
             fail(GL_ERR_INVALID_PARAMS, "speeds: expected numbers");
             return nullptr;
           }
-          o.objective.speeds.push_back(v.get<double>());
+          const double speed = v.get<double>();
+          if (speed < optimize::kMinGoalSpeed || speed > optimize::kMaxGoalSpeed) {
+            fail(GL_ERR_INVALID_PARAMS, "speeds: " + v.dump() + " is outside [-5, 5] m/s");
+            return nullptr;
+          }
+          o.objective.speeds.push_back(speed);
         }
         if (!item.value().is_array() || o.objective.speeds.empty()) {
           fail(GL_ERR_INVALID_PARAMS, "speeds: expected a non-empty array of numbers");
@@ -258,6 +263,22 @@ void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int thr
   }
   g_error.clear();
   return new OptHandle{optimize::Optimizer::create(o, start.params), c, {}};
+}
+
+const char* gl_opt_settings_json(void) {
+  using namespace gaitlab::optimize;
+  ObjectiveSettings defaults;
+  nlohmann::ordered_json settings = nlohmann::ordered_json::array();
+  forEachSetting(defaults, [&](const SettingSpec& spec, double& value) {
+    settings.push_back({{"name", spec.name}, {"min", spec.min}, {"max", spec.max}, {"default", value},
+                        {"unit", spec.unit}, {"description", spec.description}, {"integer", spec.integer}});
+  });
+  const nlohmann::ordered_json j = {
+      {"settings", settings},
+      {"speeds", {{"min", kMinGoalSpeed}, {"max", kMaxGoalSpeed}, {"default", defaults.speeds}, {"unit", "m/s"},
+                  {"description", "goal speeds: every candidate walks an episode at each"}}}};
+  g_string = j.dump();
+  return g_string.c_str();
 }
 
 void gl_opt_destroy(void* h) { delete opt(h); }

@@ -100,6 +100,10 @@ GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
 GL_EXPORT void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
                               const char* start_json, const char* settings_json);
 GL_EXPORT void gl_opt_destroy(void* opt);
+// The objective settings gl_opt_create accepts, for forms that check them before a search:
+// {"settings":[{"name","min","max","default","unit","description","integer"},...],
+//  "speeds":{"min","max","default":[...],"unit","description"}} (optimize/objective.h).
+GL_EXPORT const char* gl_opt_settings_json(void);
 // Runs one generation; returns the best objective so far.
 GL_EXPORT double gl_opt_step(void* opt);
 GL_EXPORT int gl_opt_generation(void* opt);

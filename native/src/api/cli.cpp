@@ -241,7 +241,7 @@ int optimizeCommand(int argc, char** argv) {
     search.objective.speeds.clear();
     for (const std::string& part : split(o.values["--speeds"])) {
       double v;
-      if (!parseNumber(part, &v) || v < -5 || v > 5)
+      if (!parseNumber(part, &v) || v < optimize::kMinGoalSpeed || v > optimize::kMaxGoalSpeed)
         return usageError("--speeds: '" + part + "' is not a speed in [-5, 5] m/s");
       search.objective.speeds.push_back(v);
     }

@@ -24,7 +24,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
   visit({"warmup", 0, 60, "s", "time before travel and velocity are measured"}, s.warmup);
   double starts = s.starts;
-  visit({"starts", 1, 32, "1", "start states per goal speed (the first stands still)"}, starts);
+  visit({"starts", 1, 32, "1", "start states per goal speed (the first stands still)", true}, starts);
   s.starts = static_cast<int>(std::lround(starts));
   visit({"startImpulse", 0, 500, "N·s", "horizontal nudge at t = 0 for start states after the first"},
         s.startImpulse);
@@ -40,6 +40,8 @@ std::string setSetting(ObjectiveSettings& s, const std::string& name, double val
     if (!std::isfinite(value) || value < spec.min || value > spec.max) {
       error = name + ": " + nlohmann::json(value).dump() + " is outside [" + nlohmann::json(spec.min).dump() +
               ", " + nlohmann::json(spec.max).dump() + "]";
+    } else if (spec.integer && value != std::floor(value)) {
+      error = name + ": " + nlohmann::json(value).dump() + " is not a whole number";
     } else {
       field = value;
       error.clear();

@@ -59,7 +59,10 @@ struct SettingSpec {
   double min, max;
   const char* unit;
   const char* description;
+  bool integer = false;  // whole numbers only (rounded when set)
 };
+// Goal speeds (the `speeds` list) must lie in this range, m/s.
+constexpr double kMinGoalSpeed = -5.0, kMaxGoalSpeed = 5.0;
 void forEachSetting(ObjectiveSettings& s, const std::function<void(const SettingSpec&, double&)>& visit);
 // Sets one scalar setting by name; returns an error message, empty on success.
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value);

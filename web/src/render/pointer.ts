@@ -141,10 +141,11 @@ export class PointerInteraction {
  */
 export class SelectionRing {
   readonly mesh: THREE.Mesh;
-  constructor() {
+  /** Orange for the selection; the optimize panel's learner has a ring of its own colour. */
+  constructor(color = 0xff7a1a, radius = 0.5) {
     this.mesh = new THREE.Mesh(
-      new THREE.RingGeometry(0.45, 0.55, 48).rotateX(-Math.PI / 2),
-      new THREE.MeshBasicMaterial({ color: 0xff7a1a, transparent: true, opacity: 0.85, depthWrite: false }),
+      new THREE.RingGeometry(radius - 0.05, radius + 0.05, 48).rotateX(-Math.PI / 2),
+      new THREE.MeshBasicMaterial({ color, transparent: true, opacity: 0.85, depthWrite: false }),
     );
     this.mesh.visible = false;
     this.mesh.renderOrder = 1;

@@ -87,6 +87,8 @@ export class Stage {
    * what the camera looks at is in the middle of the part of the canvas one can see.
    */
   rightInset = 0;
+  /** The same on the left (the optimize panel, when open). */
+  leftInset = 0;
 
   /** Matches the drawing buffer and projection to the canvas's CSS size. */
   resize(): void {
@@ -94,11 +96,14 @@ export class Stage {
     const width = canvas.clientWidth || window.innerWidth;
     const height = canvas.clientHeight || window.innerHeight;
     this.renderer.setSize(width, height, false);
-    // The canvas is a window onto a view 2·inset wider, offset so that its centre sits `inset`
-    // to the left of the canvas's centre (pixels stay square: the aspect is the wider view's).
-    const inset = Math.max(0, Math.min(this.rightInset, width / 3));
-    this.camera.aspect = (width + inset) / Math.max(1, height);
-    if (inset > 0) this.camera.setViewOffset(width + inset, height, inset, 0, width, height);
+    // The canvas is a window onto a view |shift| wider, offset so that its centre sits shift/2
+    // to the left of the canvas's centre (right of it for a negative shift); pixels stay
+    // square: the aspect is the wider view's.
+    const clamp = (inset: number) => Math.max(0, Math.min(inset, width / 3));
+    const shift = clamp(this.rightInset) - clamp(this.leftInset);
+    const wider = Math.abs(shift);
+    this.camera.aspect = (width + wider) / Math.max(1, height);
+    if (wider > 0) this.camera.setViewOffset(width + wider, height, Math.max(0, shift), 0, width, height);
     else this.camera.clearViewOffset();
     this.camera.updateProjectionMatrix();
   }

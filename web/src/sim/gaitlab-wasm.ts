@@ -39,6 +39,8 @@ export interface GaitlabModule {
   _gl_sim_set_params?(sim: number, id: number, kind: number, json: number): number;
   _gl_sim_get_params?(sim: number, id: number): number;
   _gl_last_error?(): number;
+  // The optimiser's settings table (the optimize panel; absent from builds before it).
+  _gl_opt_settings_json?(): number;
   stringToUTF8(text: string, pointer: number, maxBytes: number): void;
   lengthBytesUTF8(text: string): number;
 }

@@ -49,7 +49,17 @@ export type SceneCommand =
    * New gait parameters (a gait file's JSON, gait-file.ts) for character `id`, or for every
    * character of `character`'s type with id 'all'.
    */
-  | { type: 'setParams'; id: number | 'all'; character: CharacterType; json: string };
+  | { type: 'setParams'; id: number | 'all'; character: CharacterType; json: string }
+  /**
+   * The optimize panel's learner ("learning to walk", thesis Figure 3.6): a character of its
+   * own, apart from the crowd, that walks a search's best gait so far. Each of these replaces
+   * the previous learner by a fresh one at the learner's place, facing +z, with gait `json` and
+   * goal (`speed`, `turn`); every `loopSeconds` of simulated time (0: never) it starts over
+   * there, so it keeps showing the episode the objective scores.
+   */
+  | { type: 'learner'; character: CharacterType; json: string; speed: number; turn: number; loopSeconds: number }
+  /** Removes the learner, if there is one. */
+  | { type: 'removeLearner' };
 
 /** One character as the worker last saw it (gl_sim_character_info). */
 export interface CharacterStatus {
@@ -109,6 +119,8 @@ export interface SimStats {
   characters: CharacterStatus[];
   /** Scene commands applied so far (the command log's length). */
   commandsApplied: number;
+  /** The optimize panel's learner's id, or null if there is none. */
+  learner: number | null;
 }
 
 /** Sim worker → main thread. */
@@ -124,6 +136,8 @@ export type SimEvent =
       version: string;
       /** The parameter schema (gl_schema_json), or null if this build has none. */
       schema: string | null;
+      /** The optimiser's objective settings (gl_opt_settings_json), or null if this build has none. */
+      optimizerSchema: string | null;
     }
   /** Answer to getParams / getPreset: the gait file's JSON, or why there is none. */
   | { type: 'params'; request: number; json: string | null; error: string | null }

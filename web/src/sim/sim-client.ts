@@ -5,7 +5,10 @@ import { RenderBufferReader } from './render-buffer';
 
 export interface SimClientEvents {
   /** A new scene's render buffer is ready to be drawn (after start and after every reset). */
-  onScene?: (reader: RenderBufferReader, info: { generation: number; threads: number; version: string; schema: string | null }) => void;
+  onScene?: (
+    reader: RenderBufferReader,
+    info: { generation: number; threads: number; version: string; schema: string | null; optimizerSchema: string | null },
+  ) => void;
   /** The simulation refused a command (the message says why). */
   onCommandError?: (message: string) => void;
   /** The current render buffer is about to be freed: stop reading it, synchronously. */

@@ -92,6 +92,16 @@ let lastGoal = { speed: START_SPEED, turn: START_TURN };
  */
 const typeGaits: Partial<Record<CharacterType, string>> = {};
 
+/**
+ * The optimize panel's learner (scene command 'learner'): its id, the command that made it
+ * (replayed to start it over), and the simulated time it started. It stands this far to the
+ * left (−x) of the crowd's grid, level with its middle row: apart, so it can be watched alone.
+ */
+let learner: { id: number; command: Extract<SceneCommand, { type: 'learner' }>; since: number } | null = null;
+const LEARNER_GAP = 5;
+/** A new learner (so a new id) is reported at once, not at the next 4 Hz report. */
+let learnerChanged = false;
+
 // Step timing accumulated between statistics reports.
 let stepWallMs = 0;
 let stepsTimed = 0;
@@ -117,6 +127,7 @@ function newScene(): void {
   pending = [];
   commandLog.length = 0;
   commandsApplied = 0;
+  learner = null;
   // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid.
   addCharacters(options.characters, (i) => (i % 2 === 0 ? 'biped' : 'quadruped'));
   sim.setGoal(-1, lastGoal.speed, lastGoal.turn);
@@ -140,6 +151,7 @@ function newScene(): void {
     threads: sim.threads,
     version: gaitlabVersion(module),
     schema: module._gl_schema_json ? module.UTF8ToString(module._gl_schema_json()) : null,
+    optimizerSchema: module._gl_opt_settings_json ? module.UTF8ToString(module._gl_opt_settings_json()) : null,
   });
   if (!paused) clock.start(now());
 }
@@ -193,6 +205,7 @@ function apply(command: SceneCommand): void {
     }
     case 'remove':
       sim.removeCharacter(command.id);
+      if (learner?.id === command.id) learner = null;
       return;
     case 'add':
       addCharacters(Math.max(0, Math.min(64, Math.floor(command.count))), () => command.kind);
@@ -207,6 +220,30 @@ function apply(command: SceneCommand): void {
       else if (command.id === 'all') typeGaits[command.character] = command.json;
       return;
     }
+    case 'learner': {
+      if (learner) sim.removeCharacter(learner.id);
+      learner = null;
+      const x = -((gridColumns - 1) / 2) * SPACING_X - LEARNER_GAP;
+      const id = sim.spawn(Kind[command.character], x, 0, 0);
+      if (id < 0) {
+        post({ type: 'commandError', message: 'the learner was not added: the scene is full' });
+        return;
+      }
+      const problem = sim.setParams(id, Kind[command.character], command.json);
+      if (problem) {
+        sim.removeCharacter(id);
+        post({ type: 'commandError', message: `the learner was not added: ${problem}` });
+        return;
+      }
+      sim.setGoal(id, command.speed, command.turn);
+      learner = { id, command, since: sim.time };
+      learnerChanged = true;
+      return;
+    }
+    case 'removeLearner':
+      if (learner) sim.removeCharacter(learner.id);
+      learner = null;
+      return;
     default: {
       const unknown: never = command;
       throw new Error(`unknown scene command ${JSON.stringify(unknown)}`);
@@ -262,6 +299,7 @@ function reportStats(): void {
     timeScale,
     characters: characterStatus(),
     commandsApplied,
+    learner: learner?.id ?? null,
   });
   stepWallMs = 0;
   stepsTimed = 0;
@@ -277,11 +315,20 @@ function tick(): void {
     droppedSteps += dropped;
     if (steps > 0) {
       const t0 = performance.now();
+      // The learner starts over every loopSeconds: as a logged command, so the log replays it.
+      if (learner && learner.command.loopSeconds > 0 && sim.time - learner.since >= learner.command.loopSeconds) {
+        pending.push(learner.command);
+      }
       applyPending();
       // One call for all due steps: gl_sim_step publishes a frame once, after the last.
       sim.step(steps);
       stepWallMs += performance.now() - t0;
       stepsTimed += steps;
+      if (learnerChanged) {
+        // The main thread marks and follows the learner by id: tell it the new one now.
+        learnerChanged = false;
+        reportStats();
+      }
     }
     // Returning to the event loop between ticks is what lets commands in; a timeout of 0 when
     // behind still does.

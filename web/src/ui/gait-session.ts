@@ -189,7 +189,15 @@ export class GaitSession {
   /** The crowd as last reported. */
   private characters: CharacterStatus[] = [];
 
-  private async load(target: { id: number | 'all'; character: CharacterType }): Promise<void> {
+  /** The newest load, for those that must wait until the editors show their target. */
+  private loading: Promise<void> = Promise.resolve();
+
+  private load(target: { id: number | 'all'; character: CharacterType }): Promise<void> {
+    this.loading = this.loadNow(target);
+    return this.loading;
+  }
+
+  private async loadNow(target: { id: number | 'all'; character: CharacterType }): Promise<void> {
     const token = ++this.loadToken;
     this.target = target;
     try {
@@ -408,6 +416,34 @@ export class GaitSession {
       this.refresh();
     }
     this.apply(this.gait!);
+  }
+
+  /**
+   * Gives `gait` to character `id`, or to every character of its type ('all'), as an edit: the
+   * editors switch to that target and show it, and undo brings back what it had before. (The
+   * optimize panel's Apply; the caller selects the character, or deselects for 'all', first.)
+   */
+  async applyGait(gait: GaitFile, id: number | 'all'): Promise<void> {
+    const wanted = { id, character: gait.character };
+    if (this.target.id !== wanted.id || this.target.character !== wanted.character) {
+      if (id === 'all') {
+        this.controls.editType = gait.character;
+        this.folder.controllersRecursive().forEach((c) => c.updateDisplay());
+      }
+      await this.load(wanted);
+    } else {
+      // A load of this target may be in flight (a selection just changed): let it land first,
+      // or it would overwrite the gait and clear the undo history after this edit.
+      await this.loading;
+    }
+    if (this.target.id !== wanted.id || this.target.character !== wanted.character || !this.gait) {
+      throw new Error('the selection changed while the gait was being applied');
+    }
+    this.remember();
+    this.gait = structuredClone(gait);
+    this.shareInfo.link = '';
+    this.refresh();
+    this.apply(this.gait);
   }
 
   /**

@@ -30,6 +30,8 @@ export class Overlay {
   private readonly line: HTMLElement;
   private readonly messages: HTMLElement;
   private readonly notice: HTMLElement;
+  /** Under the heads-up line and above the messages: where the optimize panel sits. */
+  readonly column: HTMLElement;
 
   constructor(parent: HTMLElement) {
     this.hud = element('div', 'hud');
@@ -43,7 +45,8 @@ export class Overlay {
     );
     this.messages = element('div', 'messages');
     this.messages.setAttribute('role', 'status');
-    this.hud.append(this.line, help, this.messages);
+    this.column = element('div', 'hud-column');
+    this.hud.append(this.line, help, this.column, this.messages);
 
     this.notice = element('div', 'notice');
     this.notice.hidden = true;

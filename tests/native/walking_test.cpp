@@ -67,3 +67,40 @@ TEST(StanceLeg, VelocityForceMovesTheLegFrameForwards) {
   EXPECT_GT(s.position.z() - z0, 0.03);
   EXPECT_GT(s.linearVelocity.z(), 0.1);
 }
+
+// Supported stance (controller.cpp, controller-notes §8): with all four feet planted and no
+// goal speed the quadruped must stand. When the stance hips carried the leg frames' whole
+// orientation torque (§3.1.3) the four legs and the body formed a parallelogram with no
+// horizontal stiffness, which drifted backwards and folded within 2–3 s.
+TEST(SupportedStance, TheQuadrupedStandsOnFourFeet) {
+  Simulation sim(1, 1);
+  sim.spawn(Kind::Quadruped, 0, 0, 0);
+  gaitlab::gait::GaitParams p = sim.controller(0).params();
+  for (auto& leg : p.legs) leg.dutyFactor = 1.0;  // clamped to the player's maximum
+  sim.controller(0).setParams(p);
+  sim.setGoal(0, {0.0, 0.0});
+  const auto start = sim.character(0).segmentState(0);
+  for (int second = 0; second < 10; ++second) {
+    sim.step(120);
+    ASSERT_FALSE(gaitlab::sim::hasFallen(sim, 0)) << "fell within " << second + 1 << " s";
+  }
+  const auto end = sim.character(0).segmentState(0);
+  EXPECT_LT((end.position - start.position).norm(), 0.05);
+  EXPECT_NEAR(end.position.y(), start.position.y(), 0.03);
+}
+
+// Without the support spring (supportGain 0) the same stance is an inverted pendulum that F_v
+// only damps: it must drift off. Guards the reason the spring exists.
+TEST(SupportedStance, WithoutTheSupportSpringTheStanceDrifts) {
+  Simulation sim(1, 1);
+  sim.spawn(Kind::Quadruped, 0, 0, 0);
+  gaitlab::gait::GaitParams p = sim.controller(0).params();
+  for (auto& leg : p.legs) leg.dutyFactor = 1.0;
+  for (auto& f : p.legFrames) f.supportGain = 0;
+  sim.controller(0).setParams(p);
+  sim.setGoal(0, {0.0, 0.0});
+  const auto start = sim.character(0).segmentState(0);
+  sim.step(120 * 4);
+  const auto end = sim.character(0).segmentState(0);
+  EXPECT_GT((end.position - start.position).norm(), 0.05);
+}

@@ -112,6 +112,12 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
 
   // Gait player (§3.1.1): phase, stance/swing, early and late strikes.
   player_.update(dt, s.footContact);
+  // P0 of a leg whose first swing starts without a lift-off event: where its foot is now.
+  if (!started_) {
+    for (size_t l = 0; l < m_.legs.size(); ++l)
+      liftOff_[l] = jointPivot(m_.legs[l].foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
+    started_ = true;
+  }
   const double phase = player_.phase();
 
   int stanceLegs = 0;
@@ -120,60 +126,141 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
 
   if (!m_.spine.empty()) spine(s, torques);
 
-  for (size_t lfIndex = 0; lfIndex < m_.legFrames.size(); ++lfIndex) {
-    const int lf = m_.legFrames[lfIndex];
-    const LegFrameParams& p = params_.legFrames[lfIndex];
-    const BodyState& frame = s.segments[lf];
+  // Stance legs per leg frame; swing legs first (§3.1.4–3.1.6), so that what they exert on the
+  // leg frames is known when the stance legs are set.
+  const int frames = static_cast<int>(m_.legFrames.size());
+  int stanceIn[kMaxLegFrames] = {0, 0};
+  for (size_t l = 0; l < m_.legs.size(); ++l) {
+    const body::Leg& leg = m_.legs[l];
+    const int li = static_cast<int>(l);
+    if (player_.leg(li).events & kLiftOff)
+      liftOff_[l] = jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
+    if (player_.leg(li).stance)
+      ++stanceIn[legFrameIndex(leg)];
+    else
+      swingLeg(li, s, yaw, velocityH, torques);
+  }
 
-    int stance = 0;
-    for (size_t l = 0; l < m_.legs.size(); ++l)
-      if (m_.legs[l].legFrame == lf && player_.leg(static_cast<int>(l)).stance) ++stance;
+  // Leg-frame torque feedback (§3.1.3, eq. 3.4–3.5): the torque each leg frame should feel, a PD
+  // towards its orientation graphs in the heading frame, less what the swing hips and the spine
+  // already exert on it: `net` is what its stance legs must add.
+  Vector3d net[kMaxLegFrames];
+  for (int f = 0; f < frames; ++f) {
+    const int lf = m_.legFrames[f];
+    const LegFrameParams& p = params_.legFrames[f];
+    const BodyState& frame = s.segments[lf];
+    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
+                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
+                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
+    net[f] = orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
+                           frame.angularVelocity);
+    for (int i = 0; i < segments; ++i) {
+      if (m_.segments[i].parent != lf) continue;
+      bool stanceHip = false;
+      for (size_t l = 0; l < m_.legs.size(); ++l)
+        if (m_.legs[l].upper == i && player_.leg(static_cast<int>(l)).stance) stanceHip = true;
+      if (!stanceHip) net[f] += torques[i];  // the joint's reaction on the leg frame is −torques[i]
+    }
+    if (m_.segments[lf].parent >= 0) net[f] -= torques[lf];
+  }
+
+  // Supported stance (beyond the thesis, for more than one leg frame). When both leg frames of
+  // a quadruped have feet down, the body is a table: its pitch is fixed by how high the front
+  // and the back stand, not by the hips. The thesis (§3.1.3) delivers the whole leg-frame
+  // torque through the stance hips; with small feet that cannot push back (limitToSupport) the
+  // stance legs then have no horizontal stiffness: four legs and the body form a parallelogram
+  // that drifts and folds (controller-notes §8). Here the pitch torque the two leg frames need
+  // together is asked of the supports instead, as vertical forces of opposite sign at the front
+  // and at the back (moment T about the heading x axis from ∓T/L at ±L/2), and every stance
+  // joint, hip included, takes the moment of its leg's force about the sole, (p_j − p_sole) × F:
+  // what a leg standing on a point must supply to push with F. What is left of the pitch, equal
+  // and opposite at the two ends, bends the spine; the stance hips still serve it (front and
+  // back feet then push the ground in opposite directions, which planted feet hold). Active only
+  // with stance legs in two leg frames: the biped's single leg frame keeps §3.1.3 as it is.
+  const bool table = frames > 1 && stanceIn[0] > 0 && stanceIn[1] > 0;
+  const Vector3d pitchAxis = headingToWorld(yaw, Vector3d::UnitX());  // also "to the left"
+  const Vector3d rollAxis = headingForward(yaw);
+  Vector3d pitchForce[kMaxLegFrames] = {Vector3d::Zero(), Vector3d::Zero()};
+  if (table) {
+    const Vector3d span = s.segments[m_.legFrames[0]].position - s.segments[m_.legFrames[1]].position;
+    const double length = std::max(0.1, span.dot(rollAxis));
+    const double pitchTorque = (net[0] + net[1]).dot(pitchAxis);
+    pitchForce[0] = Vector3d(0, -pitchTorque / length, 0);
+    pitchForce[1] = Vector3d(0, pitchTorque / length, 0);
+    for (int f = 0; f < frames; ++f) net[f] -= 0.5 * pitchTorque * pitchAxis;
+  }
+  // Likewise a leg frame standing on a left and a right foot (in a supported stance) holds its
+  // roll by how high each side stands: roll torque T from vertical forces ±T/(a_l − a_r) at the
+  // feet's lateral offsets a; the stance hips keep their virtual-force share about that axis.
+  bool rollHeld[kMaxLegFrames] = {false, false};
+  double rollForce[kMaxLegFrames] = {0, 0};  // N on each left foot; the right ones get −
+  for (int f = 0; table && f < frames; ++f) {
+    double left = 0, right = 0;
+    int nl = 0, nr = 0;
+    for (size_t l = 0; l < m_.legs.size(); ++l) {
+      if (legFrameIndex(m_.legs[l]) != f || !player_.leg(static_cast<int>(l)).stance) continue;
+      const double a =
+          (s.segments[m_.legs[l].foot].position - s.segments[m_.legFrames[f]].position).dot(pitchAxis);
+      if (geometry_[l].side > 0) {
+        left += a;
+        ++nl;
+      } else {
+        right += a;
+        ++nr;
+      }
+    }
+    if (nl == 0 || nr == 0) continue;
+    rollHeld[f] = true;
+    rollForce[f] = net[f].dot(rollAxis) / std::max(0.05, left / nl - right / nr) / nl;
+    net[f] -= net[f].dot(rollAxis) * rollAxis;
+  }
+
+  for (int f = 0; f < frames; ++f) {
+    const int lf = m_.legFrames[f];
+    const LegFrameParams& p = params_.legFrames[f];
+    const BodyState& frame = s.segments[lf];
+    const int stance = stanceIn[f];
+    if (stance == 0) continue;
 
     // Stance forces on the leg frame (§3.1.4): height F_h, velocity F_v (eq. 3.6); F_D per leg.
     const double ground = s.ground.at(frame.position.x(), frame.position.z());
     const double height = ground + m_.segments[lf].center.y() + p.heightOffset.eval(phase);
     const Vector3d fh(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
     const Vector3d fv = velocityForce(p.velocityGain, headingToWorld(yaw, desiredVelocity_), comVelocity);
+    const PhaseForceCoefficients c{p.fd[0], p.fd[1], p.fd[2], p.fd[3]};
+    // Supported stance: a quadruped's stance legs, hips free in pitch, are inverted pendulums
+    // (gravity pushes the body away from over its feet at ≈ m·g/h, −650 N/m here) and F_v only
+    // damps that. A spring keeps the hips over the centre of the stance feet: along the heading
+    // always, sideways only when both sides stand (with one foot the leg frame is not meant to
+    // stand over it).
+    Vector3d fs = Vector3d::Zero();
+    if (table && p.supportGain > 0) {
+      Vector3d off = Vector3d::Zero();
+      for (size_t l = 0; l < m_.legs.size(); ++l)
+        if (m_.legs[l].legFrame == lf && player_.leg(static_cast<int>(l)).stance)
+          off += jointPivot(m_.legs[l].foot, s) - jointPivot(m_.legs[l].upper, s);
+      off /= stance;
+      fs = p.supportGain * off.dot(rollAxis) * rollAxis;
+      if (rollHeld[f]) fs += p.supportGain * off.dot(pitchAxis) * pitchAxis;
+    }
 
+    // The stance hips deliver the leg frame's net torque (eq. 3.5), except for the components
+    // held by the supports, where they keep their share of the virtual forces.
+    const Vector3d perHip = -net[f] / stance;
     for (size_t l = 0; l < m_.legs.size(); ++l) {
       const body::Leg& leg = m_.legs[l];
-      if (leg.legFrame != lf) continue;
       const int li = static_cast<int>(l);
-      if (player_.leg(li).events & kLiftOff) {
-        liftOff_[l] = jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
-      }
-      if (player_.leg(li).stance) {
-        const BodyState& foot = s.segments[leg.foot];
-        const double d = footProgress(frame.position, foot.position, yaw);
-        const PhaseForceCoefficients c{p.fd[0], p.fd[1], p.fd[2], p.fd[3]};
-        stanceLeg(li, s, yaw, (fh + fv) / stance + phaseForce(c, d, yaw), stanceLoad, torques);
-      } else {
-        swingLeg(li, s, yaw, velocityH, torques);
-      }
+      if (leg.legFrame != lf || !player_.leg(li).stance) continue;
+      const double d = footProgress(frame.position, s.segments[leg.foot].position, yaw);
+      const Vector3d support = pitchForce[f] / stance + Vector3d(0, geometry_[l].side * rollForce[f], 0);
+      stanceLeg(li, s, yaw, (fh + fv + fs) / stance + support + phaseForce(c, d, yaw), stanceLoad, table,
+                torques);
+      Vector3d& hip = torques[leg.upper];
+      Vector3d own = Vector3d::Zero();
+      if (table) own += hip.dot(pitchAxis) * pitchAxis;
+      if (rollHeld[f]) own += hip.dot(rollAxis) * rollAxis;
+      hip = perHip + own;
     }
-
-    // Leg-frame torque feedback (§3.1.3, eq. 3.4–3.5): the torque the leg frame should feel,
-    // from a PD towards its orientation graphs in the heading frame, is delivered through the
-    // stance hips, which take up whatever the swing hips and the spine already exert on it.
-    if (stance == 0) continue;
-    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
-                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
-                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
-    const Vector3d wanted = orientationPd(p.orientationKp, p.orientationKd, frame.orientation,
-                                          desired, frame.angularVelocity);
-    Vector3d others = Vector3d::Zero();  // torque on the leg frame from swing hips and spine
-    for (int i = 0; i < segments; ++i) {
-      const body::Segment& seg = m_.segments[i];
-      bool stanceHip = false;
-      for (size_t l = 0; l < m_.legs.size(); ++l)
-        if (m_.legs[l].upper == i && player_.leg(static_cast<int>(l)).stance) stanceHip = true;
-      if (seg.parent == lf && !stanceHip) others -= torques[i];
-    }
-    if (m_.segments[lf].parent >= 0) others += torques[lf];
-    const Vector3d perHip = -(wanted - others) / stance;
-    for (size_t l = 0; l < m_.legs.size(); ++l)
-      if (m_.legs[l].legFrame == lf && player_.leg(static_cast<int>(l)).stance)
-        torques[m_.legs[l].upper] = perHip;
   }
 
   // Twist scaling on swing hips only: a stance leg cannot spin about its own axis (knee hinge,
@@ -189,7 +276,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
 }
 
 void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vector3d& force,
-                           double load, Vector3d* torques) {
+                           double load, bool supported, Vector3d* torques) {
   const body::Leg& leg = m_.legs[l];
 
   // The virtual force F wanted on the leg frame (§3.1.4, Figure 3.4), by the Jacobian
@@ -200,9 +287,13 @@ void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vec
   // leg would, differs by the constant moment (p_sole − p_lf) × F, which only the stance hip
   // could supply, and the stance hip is spent on the leg frame's orientation (below): the
   // knee and ankle were left pushing the leg frame backwards when it was asked to go forwards.
+  // In a supported stance (update(): both leg frames have feet down) the hip keeps its share,
+  // so the force is taken at the sole: the moment (p_sole − p_lf) × F is then balanced by the
+  // other leg frame's supports instead of the ankle, which cannot hold it.
   const DofChain chain = legChain(l, s);
-  accumulateJointTorques(chain, s.segments[leg.legFrame].position, -force, torques,
-                         static_cast<int>(m_.segments.size()));
+  const Vector3d at = supported ? jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0)
+                                : s.segments[leg.legFrame].position;
+  accumulateJointTorques(chain, at, -force, torques, static_cast<int>(m_.segments.size()));
 
   // Knee: PD towards a slightly bent stance knee (§3.1.4, §3.1.7).
   kneePd(l, s, params_.gains.stanceKneeFlexion, torques);

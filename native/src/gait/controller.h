@@ -69,7 +69,7 @@ class Controller {
 
   // `load`: the weight this stance leg carries (N), for the support limit of its ankle.
   void stanceLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& force,
-                 double load, Eigen::Vector3d* torques);
+                 double load, bool supported, Eigen::Vector3d* torques);
   void swingLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& velocity,
                 Eigen::Vector3d* torques);
   int legFrameIndex(const body::Leg& leg) const;  // 0 front/only, 1 back
@@ -87,6 +87,7 @@ class Controller {
   GaitPlayer player_;
   std::vector<LegGeometry> geometry_;
   std::vector<Eigen::Vector3d> liftOff_;  // per leg: foot position at lift-off (P0)
+  bool started_ = false;                  // liftOff_ set from the feet on the first update
   double desiredHeading_;
   Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gravity_{0, -9.81, 0};

@@ -18,6 +18,9 @@ struct LegFrameParams {
   MotionGraph footTrackingGain, stepHeight, swingEase;
   double heightKp = 0, heightKd = 0;  // F_h PD gains (N/m, N·s/m)
   double velocityGain = 0;            // K_v of F_v = K_v (v_d − v) (eq. 3.6), N·s/m
+  // Supported stance (both leg frames with feet down, controller.cpp): horizontal force per
+  // metre that the leg frame's hips stand off the centre of its stance feet, N/m.
+  double supportGain = 0;
   double fd[4] = {0, 0, 0, 0};        // c0..c3 of F_D(D) (eq. 3.8)
   double footPlacementScale = 0;      // s of P1 = P_lf + (v − v_d)·s (§3.1.6), seconds
   double footPlacementLead = 0;       // s: the nominal offset grows by v_d × this

@@ -82,11 +82,14 @@ Table build(Character c) {
   JointGains& g = proto.gains;
   scalar("gains.hipKp", kJointGains, biped ? Bounds{0, 1500} : Bounds{0, 400}, "N·m/rad",
          "hip PD proportional gain", g.hipKp);
-  scalar("gains.hipKd", kJointGains, biped ? Bounds{0, 60} : Bounds{0, 20}, "N·m·s/rad",
+  // Explicit PD at 120 Hz is stable while k_d·dt/I_eff < ~1. The quadruped's limbs carry
+  // 0.05 kg·m² of armature and little more (I_eff ≈ 0.05): hip, knee and stance ankle damping
+  // above ~6 N·m·s/rad is unstable by construction (controller-notes §8).
+  scalar("gains.hipKd", kJointGains, biped ? Bounds{0, 60} : Bounds{0, 5}, "N·m·s/rad",
          "hip PD derivative gain", g.hipKd);
   scalar("gains.kneeKp", kJointGains, biped ? Bounds{0, 1500} : Bounds{0, 400}, "N·m/rad",
          "knee PD proportional gain (target from two-link IK, §3.1.5)", g.kneeKp);
-  scalar("gains.kneeKd", kJointGains, biped ? Bounds{0, 60} : Bounds{0, 20}, "N·m·s/rad",
+  scalar("gains.kneeKd", kJointGains, biped ? Bounds{0, 60} : Bounds{0, 5}, "N·m·s/rad",
          "knee PD derivative gain", g.kneeKd);
   scalar("gains.ankleKp", kJointGains, biped ? Bounds{0, 40} : Bounds{0, 20}, "N·m/rad",
          "ankle PD proportional gain (foot take-off and strike angles)", g.ankleKp);
@@ -95,12 +98,14 @@ Table build(Character c) {
          g.ankleKd);
   scalar("gains.stanceAnkleKp", kJointGains, biped ? Bounds{0, 3000} : Bounds{0, 800}, "N·m/rad",
          "stance ankle PD proportional gain, foot relative to its shin (§3.1.7)", g.stanceAnkleKp);
-  scalar("gains.stanceAnkleKd", kJointGains, biped ? Bounds{0, 40} : Bounds{0, 15}, "N·m·s/rad",
+  scalar("gains.stanceAnkleKd", kJointGains, biped ? Bounds{0, 40} : Bounds{0, 5}, "N·m·s/rad",
          "stance ankle PD derivative gain", g.stanceAnkleKd);
   if (!biped) {  // the biped has no spine
     scalar("gains.spineKp", kJointGains, {0, 800}, "N·m/rad",
            "spine PD proportional gain (each of the spine links)", g.spineKp);
-    scalar("gains.spineKd", kJointGains, {0, 40}, "N·m·s/rad", "spine PD derivative gain",
+    // Spine joints join two 2 kg links (I ≈ 0.05 kg·m² each, relative ≈ 0.025, and the chain's
+    // fastest mode less): k_d = 5 alternated ±45 N·m every step, k_d ≤ 1 is smooth (§8).
+    scalar("gains.spineKd", kJointGains, {0, 1.5}, "N·m·s/rad", "spine PD derivative gain",
            g.spineKd);
   }
   scalar("gains.stanceKneeFlexion", kStance, {0, 1.0}, "rad", "knee bend the stance knee's PD holds",
@@ -136,6 +141,10 @@ Table build(Character c) {
            "F_h derivative gain", f.heightKd);
     scalar(n + "velocityGain", kStance, {0, 400}, "N·s/m",
            "K_v of the stance velocity force F_v = K_v (v_d − v) (eq. 3.6)", f.velocityGain);
+    scalar(n + "supportGain", kStance, {0, 2000}, "N/m",
+           "with feet down under both leg frames: horizontal force per metre the hips stand off "
+           "their stance feet (a quadruped's legs are inverted pendulums; beyond the thesis)",
+           f.supportGain);
     scalar(n + "fdC0", kStance, {-200, 200}, "N", "c0 of F_D(D): vertical force at D = 0 (eq. 3.8)",
            f.fd[0]);
     scalar(n + "fdC1", kStance, {-1000, 1000}, "N/m", "c1 of F_D(D): vertical force per metre of D (eq. 3.8)",

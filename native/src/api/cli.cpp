@@ -46,7 +46,9 @@ const char* kUsage =
     "  --speed M_S                   goal speed, m/s (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s (default 0)\n"
     "  --seconds S                   simulated time (default 20)\n"
-    "  --terrain flat                ground (default flat)\n"
+    "  --terrain flat|slope|bumps    ground (default flat): slope = ridges and valleys of ±5°\n"
+    "                                across the walking direction, bumps = smooth random bumps\n"
+    "                                of 2-3 cm every 0.5 m (drawn from --seed)\n"
     "  --push-impulse N_S            lateral push at the leg frame (default 0: none)\n"
     "  --push-every S                seconds between pushes (default 4)\n"
     "  --seed N                      (default 1)\n"
@@ -117,8 +119,9 @@ int walk(int argc, char** argv) {
   const gait::Character c = chosen.value_or(gait::Character::Biped);
   const std::string character = gait::characterName(c);
   w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
-  w.terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
-  if (w.terrain != "flat") return usageError("--terrain: '" + w.terrain + "' is not flat");
+  const std::string terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
+  if (!physics::parseTerrain(terrain, &w.terrain))
+    return usageError("--terrain: '" + terrain + "' is not flat, slope or bumps");
   double seed = 1;
   if (!o.number("--speed", -5, 5, 1.0, &w.speed) || !o.number("--turn", -3, 3, 0.0, &w.turnRate) ||
       !o.number("--seconds", 0.01, 3600, 20.0, &w.seconds) ||
@@ -132,7 +135,8 @@ int walk(int argc, char** argv) {
   const sim::WalkResult r = sim::runWalk(w);
   json out = {
       {"character", character},
-      {"terrain", w.terrain},
+      {"terrain", physics::terrainName(w.terrain)},
+      {"terrain_hash", r.terrainHash},
       {"seconds", r.seconds},
       {"fell", r.fell},
       {"fall_time_s", r.fell ? json(r.fallTime) : json(nullptr)},

@@ -6,6 +6,7 @@
 // consists of workers nested in this one.
 import { FixedStepClock } from './fixed-step-clock';
 import { gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
+import type { TerrainKind } from './terrain-grid';
 import {
   errorMessage,
   type CharacterStatus,
@@ -32,7 +33,7 @@ const STATS_INTERVAL_MS = 250;
 
 // The DOM lib's `self` is a Window; this is the part of DedicatedWorkerGlobalScope used here.
 interface WorkerScope {
-  postMessage(message: SimEvent): void;
+  postMessage(message: SimEvent, transfer?: Transferable[]): void;
   onmessage: ((event: MessageEvent<SimCommand>) => void) | null;
 }
 const scope = self as unknown as WorkerScope;
@@ -112,6 +113,8 @@ function newScene(): void {
   if (!module || !options) return;
   // The previous simulation is gone by now (see 'released'): its pthreads are back in the pool.
   sim = new Simulation(module, options.threads, options.seed);
+  // The ground first, so that the characters are spawned standing on it.
+  if (terrain !== 'flat' && !sim.setTerrain(terrain)) terrain = 'flat';
   gridColumns = Math.max(1, Math.ceil(Math.sqrt(options.characters)));
   nextSlot = 0;
   pending = [];
@@ -124,6 +127,7 @@ function newScene(): void {
   // What the new scene keeps from the session (goal, auto-reset, gaits of a whole type) opens
   // its command log, so that the log alone with the seed still replays the run.
   const carried: SceneCommand[] = [
+    ...(terrain !== 'flat' ? [{ type: 'setTerrain' as const, terrain }] : []),
     { type: 'setGoal', id: 'all', speed: lastGoal.speed, turn: lastGoal.turn },
     { type: 'autoReset', seconds: autoResetSeconds },
     ...Object.entries(typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
@@ -141,10 +145,20 @@ function newScene(): void {
     version: gaitlabVersion(module),
     schema: module._gl_schema_json ? module.UTF8ToString(module._gl_schema_json()) : null,
   });
+  postTerrain();
   if (!paused) clock.start(now());
 }
 
 let autoResetSeconds = 0;
+/** The ground: kept across new scenes, like the goal and the auto-reset. */
+let terrain: TerrainKind = 'flat';
+
+/** Sends the ground's grid and samples to the main thread (a copy, transferred). */
+function postTerrain(): void {
+  if (!sim) return;
+  const grid = sim.terrainGrid();
+  scope.postMessage({ type: 'terrain', generation, grid }, grid.heights ? [grid.heights.buffer] : []);
+}
 
 /** Places `count` characters on the next free grid places, centred on the origin. */
 function addCharacters(count: number, type: (i: number) => 'biped' | 'quadruped'): void {
@@ -207,6 +221,14 @@ function apply(command: SceneCommand): void {
       else if (command.id === 'all') typeGaits[command.character] = command.json;
       return;
     }
+    case 'setTerrain':
+      if (!sim.setTerrain(command.terrain)) {
+        post({ type: 'commandError', message: `this build of the simulation has no '${command.terrain}' terrain` });
+        return;
+      }
+      terrain = command.terrain;
+      postTerrain();
+      return;
     default: {
       const unknown: never = command;
       throw new Error(`unknown scene command ${JSON.stringify(unknown)}`);
@@ -262,6 +284,7 @@ function reportStats(): void {
     timeScale,
     characters: characterStatus(),
     commandsApplied,
+    terrain,
   });
   stepWallMs = 0;
   stepsTimed = 0;
@@ -301,6 +324,7 @@ async function init(initial: SimOptions): Promise<void> {
   }
   options = initial;
   paused = initial.paused === true;
+  terrain = initial.terrain ?? 'flat';
   module = await loadGaitlab(initial.wasmUrl, {
     print: (text) => console.log(`[gaitlab] ${text}`),
     printErr: (text) => console.warn(`[gaitlab] ${text}`),

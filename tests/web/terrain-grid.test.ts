@@ -1,7 +1,7 @@
 // The page's view of the ground (web/src/sim/terrain-grid.ts): heights between samples follow
 // the triangles Bullet's heightfield makes of each cell, and the plane lies beyond the grid.
 import { describe, expect, it } from 'vitest';
-import { FLAT_GROUND, groundHeight, isTerrainKind, type TerrainGrid } from '../../web/src/sim/terrain-grid';
+import { FLAT_GROUND, groundHeight, intersectGround, isTerrainKind, type TerrainGrid } from '../../web/src/sim/terrain-grid';
 import { simOptionsFromQuery, type SimOptions } from '../../web/src/sim/protocol';
 
 // 3 × 3 samples, 0.5 m apart, from (-0.5, -0.5).
@@ -37,6 +37,23 @@ describe('groundHeight', () => {
     expect(groundHeight(grid, 0.51, 0)).toBe(-0.05);
     expect(groundHeight(grid, 0, -0.6)).toBe(-0.05);
     expect(groundHeight(FLAT_GROUND, 12, -3)).toBe(0);
+  });
+});
+
+describe('intersectGround', () => {
+  it('finds where a ray meets the relief, within a millimetre', () => {
+    const d = { x: 0.3, y: -1, z: 0.2 };
+    const n = Math.hypot(d.x, d.y, d.z);
+    const p = intersectGround(grid, { x: -0.3, y: 2, z: -0.4 }, { x: d.x / n, y: d.y / n, z: d.z / n });
+    expect(p).not.toBeNull();
+    expect(Math.abs(p!.y - groundHeight(grid, p!.x, p!.z))).toBeLessThan(1e-3);
+    expect(p!.x).toBeGreaterThan(-0.5);
+    expect(p!.x).toBeLessThan(0.5);
+  });
+  it('meets the plane beyond the grid, and nothing when looking up', () => {
+    const p = intersectGround(grid, { x: 3, y: 1, z: 0 }, { x: 0, y: -1, z: 0 });
+    expect(Math.abs(p!.y + 0.05)).toBeLessThan(1e-3);
+    expect(intersectGround(grid, { x: 0, y: 1, z: 0 }, { x: 0, y: 1, z: 0 })).toBeNull();
   });
 });
 

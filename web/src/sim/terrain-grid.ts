@@ -49,3 +49,34 @@ export function groundHeight(grid: TerrainGrid, x: number, z: number): number {
   if (fx + fz <= 1) return at(c, r) + fx * (at(c + 1, r) - at(c, r)) + fz * (at(c, r + 1) - at(c, r));
   return at(c + 1, r + 1) + (1 - fx) * (at(c, r + 1) - at(c + 1, r + 1)) + (1 - fz) * (at(c + 1, r) - at(c + 1, r + 1));
 }
+
+/**
+ * Where a ray (origin, unit direction) first meets the ground within `maxDistance` metres, or
+ * null: marched in steps of half a sample, then bisected to a millimetre. For clicks on the
+ * ground, so that a box thrown at a point on a slope lands there.
+ */
+export function intersectGround(
+  grid: TerrainGrid,
+  origin: { x: number; y: number; z: number },
+  direction: { x: number; y: number; z: number },
+  maxDistance = 300,
+): { x: number; y: number; z: number } | null {
+  const at = (t: number) => ({ x: origin.x + direction.x * t, y: origin.y + direction.y * t, z: origin.z + direction.z * t });
+  const above = (t: number) => {
+    const p = at(t);
+    return p.y - groundHeight(grid, p.x, p.z);
+  };
+  if (above(0) <= 0) return null;
+  const step = Math.max(0.01, (grid.heights ? grid.spacing : 1) / 2);
+  let near = 0;
+  for (let far = step; far <= maxDistance; near = far, far += step) {
+    if (above(far) > 0) continue;
+    for (let i = 0; i < 40 && far - near > 1e-3; i++) {
+      const mid = (near + far) / 2;
+      if (above(mid) > 0) near = mid;
+      else far = mid;
+    }
+    return at(far);
+  }
+  return null;
+}

@@ -273,6 +273,76 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.close();
   });
 
+  it('switches the ground to slope and bumps: drawn from the physics samples, characters re-placed standing on it', { timeout: TEST_TIMEOUT }, async () => {
+    const { page, problems } = await openPage(`${server.url}?characters=6&paused=1`);
+    await ready(page);
+    await page.waitForFunction(() => window.gaitlab.stats().drawnTerrain === 'flat', null, { timeout: PAGE_TIMEOUT });
+    await page.waitForTimeout(700);
+    const onFlat = await page.evaluate(() => window.gaitlab.characters());
+    assert.equal(onFlat.length, 6);
+    // How high each root stands above the ground under it, on flat ground.
+    const heightAbove = (chars) => page.evaluate((cs) => cs.map((c) => c.position[1] - window.gaitlab.groundHeight(c.position[0], c.position[2])), chars);
+    const standing = await heightAbove(onFlat);
+
+    const check = async (kind) => {
+      await page.waitForFunction((k) => window.gaitlab.stats().terrain === k && window.gaitlab.stats().drawnTerrain === k, kind, { timeout: PAGE_TIMEOUT });
+      await page.waitForTimeout(700); // the report after the change carries the re-placed characters
+      const now = await page.evaluate(() => window.gaitlab.characters());
+      assert.deepEqual(now.map((c) => c.id), onFlat.map((c) => c.id), `${kind}: the same characters`);
+      const above = await heightAbove(now);
+      now.forEach((c, i) => {
+        // Re-placed where they stood, standing on the new ground: a biped's feet are close
+        // together, a quadruped's hind feet may hang over ground that falls away (5° over 0.9 m).
+        assert.ok(Math.hypot(c.position[0] - onFlat[i].position[0], c.position[2] - onFlat[i].position[2]) < 0.3, `${kind}: ${c.type} #${c.id} stays where it was`);
+        const tolerance = c.type === 'biped' ? 0.03 : 0.1;
+        assert.ok(Math.abs(above[i] - standing[i]) < tolerance,
+          `${kind}: ${c.type} #${c.id} stands ${above[i].toFixed(3)} m above the drawn ground (${standing[i].toFixed(3)} m on flat)`);
+      });
+      // Half a second later the bipeds are still up on it.
+      const t0 = (await stats(page)).simTime;
+      await page.evaluate(() => window.gaitlab.step(60));
+      await page.waitForFunction((t) => Math.abs(window.gaitlab.stats().simTime - t - 0.5) < 1e-6, t0, { timeout: PAGE_TIMEOUT, polling: 100 });
+      await page.waitForTimeout(700);
+      const later = await page.evaluate(() => window.gaitlab.characters());
+      for (const c of later.filter((x) => x.type === 'biped')) assert.equal(c.fallen, false, `${kind}: biped #${c.id} is up after 0.5 s`);
+      return later;
+    };
+
+    // Through the control panel: the slope. Its ridges and valleys are those of the physics.
+    await page.locator('.lil-controller', { hasText: 'terrain' }).locator('select').selectOption('slope');
+    await check('slope');
+    const ground = (x, z) => page.evaluate(([a, b]) => window.gaitlab.groundHeight(a, b), [x, z]);
+    assert.ok(Math.abs(await ground(3, 0)) < 1e-6, 'the slope passes through the origin');
+    assert.ok(Math.abs((await ground(3, 2.5)) - 2.5 * Math.tan((5 * Math.PI) / 180)) < 1e-5, 'a ridge at z = 2.5 m, 5° up from the origin');
+    assert.ok(Math.abs((await ground(3, -2.5)) + 2.5 * Math.tan((5 * Math.PI) / 180)) < 1e-5, 'a valley at z = -2.5 m');
+    await page.screenshot({ path: path.join(resultsDir, 'terrain-slope.png') });
+
+    // Through the test hook: the bumps.
+    await page.evaluate(() => window.gaitlab.setTerrain('bumps'));
+    await check('bumps');
+    const samples = await page.evaluate(() => {
+      const out = [];
+      for (let x = -3; x <= 3; x += 0.0625) out.push(window.gaitlab.groundHeight(x, 0)); // along a row of the lattice
+      return out;
+    });
+    const range = Math.max(...samples) - Math.min(...samples);
+    assert.ok(range > 0.015 && range <= 0.0301, `bumps of 2-3 cm along a line (${(range * 100).toFixed(1)} cm)`);
+    await page.screenshot({ path: path.join(resultsDir, 'terrain-bumps.png') });
+
+    // The page still runs on the new ground, and flat ground comes back.
+    await page.evaluate(() => window.gaitlab.resume());
+    const t0 = (await stats(page)).simTime;
+    await page.waitForFunction((t) => window.gaitlab.stats().simTime > t + 0.5, t0, { timeout: PAGE_TIMEOUT });
+    await page.evaluate(() => window.gaitlab.setTerrain('flat'));
+    await page.waitForFunction(() => window.gaitlab.stats().terrain === 'flat' && window.gaitlab.stats().drawnTerrain === 'flat', null, { timeout: PAGE_TIMEOUT });
+    assert.equal(await ground(3, 2.5), 0, 'flat again');
+    const s = await stats(page);
+    assert.equal(s.error, null);
+    assert.ok(s.fps > 0, 'frames are drawn');
+    assert.deepEqual(problems, [], 'no page errors');
+    await page.close();
+  });
+
   it('clicks select characters and throw boxes; dragging a body pulls it', { timeout: TEST_TIMEOUT }, async () => {
     const { page, problems } = await openPage(`${server.url}?characters=4&paused=1`);
     await ready(page);

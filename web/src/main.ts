@@ -17,6 +17,7 @@ import {
   type Vec3,
 } from './sim/protocol';
 import { SimClient } from './sim/sim-client';
+import { groundHeight, isTerrainKind, type TerrainKind } from './sim/terrain-grid';
 import { ControlPanel } from './ui/control-panel';
 import { GaitSession } from './ui/gait-session';
 import { LEARNER_COLOUR, OptimizePanel, type OptimizeStatus } from './ui/optimize-panel';
@@ -52,6 +53,9 @@ export interface GaitlabStats {
   /** Whether this build has the parameter schema (gait editing and sharing). */
   gaits: boolean;
   selected: number | null;
+  /** The ground the simulation reports, and the one the page draws (they differ for a moment after a change). */
+  terrain: TerrainKind;
+  drawnTerrain: TerrainKind | null;
 }
 
 export interface GaitlabHook {
@@ -96,6 +100,12 @@ export interface GaitlabHook {
   optimizeShareUrl(): Promise<string>;
   /** The learner's id (the character walking the best so far), or null. */
   learner(): number | null;
+  /** Changes the ground (as the control panel does): flat, slope or bumps. */
+  setTerrain(kind: TerrainKind): void;
+  /** Height of the drawn ground at (x, z): from the samples the page drew, the physics' own. */
+  groundHeight(x: number, z: number): number | null;
+  /** Puts the camera at `from` looking at `to` (screenshots and tests; orbiting continues from there). */
+  view(from: Vec3, to: Vec3): void;
 }
 
 declare global {
@@ -121,6 +131,7 @@ const state = {
   characters: [] as CharacterStatus[],
   selected: null as number | null,
   follow: false,
+  terrain: 'flat' as TerrainKind,
 };
 /** Without statistics from the worker for this long, it is stuck (it reports 4 times a second). */
 const STALL_MS = 15_000;
@@ -182,6 +193,7 @@ const panel = new ControlPanel({
     send({ type: 'setGoal', id: target === 'selected' && state.selected !== null ? state.selected : 'all', speed, turn }),
   follow: (on) => (state.follow = on),
   deselect: () => select(null),
+  terrain: (kind) => send({ type: 'setTerrain', terrain: kind }),
 });
 
 const hook: GaitlabHook = {
@@ -202,6 +214,8 @@ const hook: GaitlabHook = {
     error: state.error,
     gaits: gaits !== null,
     selected: state.selected,
+    terrain: state.terrain,
+    drawnTerrain: stage?.terrain?.kind ?? null,
   }),
   characters: () => state.characters.map((c) => ({ ...c, position: [...c.position] as Vec3, goal: { ...c.goal } })),
   getGait: async (id) => {
@@ -248,6 +262,12 @@ const hook: GaitlabHook = {
     const rect = stage.renderer.domElement.getBoundingClientRect();
     return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
   },
+  setTerrain: (kind) => {
+    if (!isTerrainKind(kind)) throw new Error(`'${String(kind)}' is not flat, slope or bumps`);
+    send({ type: 'setTerrain', terrain: kind });
+  },
+  groundHeight: (x, z) => (stage?.terrain ? groundHeight(stage.terrain, x, z) : null),
+  view: (from, to) => stage?.view(new THREE.Vector3(...from), new THREE.Vector3(...to)),
 };
 window.gaitlab = Object.freeze(hook);
 
@@ -341,10 +361,18 @@ if (!window.crossOriginIsolated) {
       state.timeScale = stats.timeScale;
       state.characters = stats.characters;
       learnerId = stats.learner;
+      if (stats.terrain !== state.terrain) {
+        state.terrain = stats.terrain;
+        panel.setTerrain(stats.terrain);
+      }
       panel.setPaused(stats.paused);
       // The selected character may have been removed.
       if (state.selected !== null && !selectedStatus()) select(null);
       gaits?.tick(selectedStatus(), stats.characters);
+    },
+    onTerrain: (grid) => {
+      stage?.setTerrain(grid);
+      panel.setTerrain(grid.kind);
     },
     onError: (message) => showError('The simulation stopped', message),
     onCommandError: (message) => overlay.message(message, 'problem'),

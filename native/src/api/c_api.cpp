@@ -119,6 +119,32 @@ int gl_sim_character_info(void* s, double* out, int capacity) {
   return n;
 }
 
+// ---- Terrain --------------------------------------------------------------------------------
+
+int gl_sim_set_terrain(void* s, int kind) {
+  if (kind < GL_TERRAIN_FLAT || kind > GL_TERRAIN_BUMPS) return -1;
+  sim(s)->setTerrain(static_cast<gaitlab::physics::TerrainKind>(kind));
+  return 0;
+}
+
+void gl_sim_terrain_grid(void* s, double* out) {
+  const gaitlab::physics::Terrain& t = sim(s)->terrain();
+  out[GL_GRID_KIND] = static_cast<int>(t.kind());
+  out[GL_GRID_COLUMNS] = t.columns();
+  out[GL_GRID_ROWS] = t.rows();
+  out[GL_GRID_SPACING] = t.spacing();
+  out[GL_GRID_ORIGIN_X] = t.originX();
+  out[GL_GRID_ORIGIN_Z] = t.originZ();
+  out[GL_GRID_PLANE] = t.planeHeight();
+}
+
+const float* gl_sim_terrain_heights(void* s) {
+  const gaitlab::physics::Terrain& t = sim(s)->terrain();
+  return t.flat() ? nullptr : t.heights().data();
+}
+
+double gl_sim_ground_height(void* s, double x, double z) { return sim(s)->groundHeight(x, z); }
+
 }  // extern "C"
 
 // ---- Gait parameters: schema, presets, gait files ----------------------------------------------

@@ -24,7 +24,7 @@ GL_EXPORT const char* gl_version(void);
 // is busy stepping. Thread counts above the hardware's are allowed (the thesis ran 2-4).
 #define GL_MAX_THREADS 5
 
-// A new simulation: flat ground, nothing on it. `threads` is the size of the thread pool used for
+// A new simulation: flat ground (gl_sim_set_terrain changes it), nothing on it. `threads` is the size of the thread pool used for
 // per-character work, clamped to [1, GL_MAX_THREADS] (gl_sim_threads tells the count in use).
 // `seed` drives every random choice of the scene.
 GL_EXPORT void* gl_sim_create(int threads, uint32_t seed);
@@ -159,6 +159,41 @@ enum {
 // Writes GL_INFO_FIELDS doubles per character for at most `capacity` characters into `out`;
 // returns the number of characters (which may exceed `capacity`).
 GL_EXPORT int gl_sim_character_info(void* sim, double* out, int capacity);
+
+// ---- Terrain: the ground (native/src/physics/terrain.h; issue 5's ground choice) ---------------
+// A terrain is a square grid of height samples joined by triangles, with a flat plane beyond it.
+// The page draws its ground from the same samples the physics collides with.
+
+enum { GL_TERRAIN_FLAT = 0, GL_TERRAIN_SLOPE = 1, GL_TERRAIN_BUMPS = 2 };
+
+// Sets the ground of every physics shard: flat, a ±5° ridge-and-valley slope across +z, or
+// 2-3 cm bumps drawn from the simulation's seed. Characters already in the scene are re-placed
+// standing on the new ground where they are (same gait and goal), props lifted out of it.
+// Returns 0, or -1 for an unknown kind (nothing changes).
+GL_EXPORT int gl_sim_set_terrain(void* sim, int kind);
+
+// Fields written by gl_sim_terrain_grid, in this order.
+enum {
+  GL_GRID_KIND,      // GL_TERRAIN_*
+  GL_GRID_COLUMNS,   // samples along +x (0 when flat)
+  GL_GRID_ROWS,      // samples along +z (0 when flat)
+  GL_GRID_SPACING,   // metres between samples
+  GL_GRID_ORIGIN_X,  // x of column 0, metres
+  GL_GRID_ORIGIN_Z,  // z of row 0, metres
+  GL_GRID_PLANE,     // height of the flat ground beyond the grid (everywhere when flat)
+  GL_GRID_FIELDS
+};
+// Writes GL_GRID_FIELDS doubles describing the terrain's grid into `out`.
+GL_EXPORT void gl_sim_terrain_grid(void* sim, double* out);
+
+// The samples: columns × rows floats, row-major (sample (c, r) at index r·columns + c, at
+// x = origin_x + c·spacing, z = origin_z + r·spacing). Each grid cell is two triangles split along
+// the diagonal from (c+1, r) to (c, r+1), as Bullet's heightfield splits it. NULL when flat.
+// Owned by the simulation; valid until the terrain changes or the simulation is destroyed.
+GL_EXPORT const float* gl_sim_terrain_heights(void* sim);
+
+// Height of the ground under (x, z) as the controller sees it: a ray cast against the terrain.
+GL_EXPORT double gl_sim_ground_height(void* sim, double x, double z);
 
 // ---- Benchmark (the performance page, web/src/bench) ----------------------------------------
 // The same measurement as `gaitlab bench` (native/src/sim/experiment.h), one point per call so

@@ -45,8 +45,13 @@ const char* kUsage =
     "  --params FILE                 gait file (public/presets/*.json format); default: preset\n"
     "  --speed M_S                   goal speed, m/s (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s (default 0)\n"
+    "  --heading RAD                 heading it starts facing, about +y (default 0: +z)\n"
+    "  --start-push-forward N_S      impulse at the leg frame at t = 0, forward (default 0)\n"
+    "  --start-push-left N_S         the same, to the left (default 0)\n"
     "  --seconds S                   simulated time (default 20)\n"
-    "  --terrain flat                ground (default flat)\n"
+    "  --terrain flat|slope|bumps    ground (default flat): slope = ridges and valleys of ±5°\n"
+    "                                across the walking direction, bumps = smooth random bumps\n"
+    "                                of 2-3 cm every 0.5 m (drawn from --seed)\n"
     "  --push-impulse N_S            lateral push at the leg frame (default 0: none)\n"
     "  --push-every S                seconds between pushes (default 4)\n"
     "  --seed N                      (default 1)\n"
@@ -101,8 +106,8 @@ int loadParamsOption(const std::string& path, std::optional<gait::Character> exp
 
 int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
-            {"--character", "--params", "--speed", "--turn", "--seconds", "--terrain",
-             "--push-impulse", "--push-every", "--seed"},
+            {"--character", "--params", "--speed", "--turn", "--heading", "--start-push-forward",
+             "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed"},
             {"--json", "--trace"});
   if (!o.error.empty()) return usageError(o.error);
   sim::WalkOptions w;
@@ -117,10 +122,14 @@ int walk(int argc, char** argv) {
   const gait::Character c = chosen.value_or(gait::Character::Biped);
   const std::string character = gait::characterName(c);
   w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
-  w.terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
-  if (w.terrain != "flat") return usageError("--terrain: '" + w.terrain + "' is not flat");
+  const std::string terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
+  if (!physics::parseTerrain(terrain, &w.terrain))
+    return usageError("--terrain: '" + terrain + "' is not flat, slope or bumps");
   double seed = 1;
   if (!o.number("--speed", -5, 5, 1.0, &w.speed) || !o.number("--turn", -3, 3, 0.0, &w.turnRate) ||
+      !o.number("--heading", -7, 7, 0.0, &w.heading) ||
+      !o.number("--start-push-forward", -1000, 1000, 0.0, &w.startImpulseForward) ||
+      !o.number("--start-push-left", -1000, 1000, 0.0, &w.startImpulseLeft) ||
       !o.number("--seconds", 0.01, 3600, 20.0, &w.seconds) ||
       !o.number("--push-impulse", 0, 10000, 0.0, &w.pushImpulse) ||
       !o.number("--push-every", 0.5, 3600, 4.0, &w.pushEvery) ||
@@ -132,7 +141,8 @@ int walk(int argc, char** argv) {
   const sim::WalkResult r = sim::runWalk(w);
   json out = {
       {"character", character},
-      {"terrain", w.terrain},
+      {"terrain", physics::terrainName(w.terrain)},
+      {"terrain_hash", r.terrainHash},
       {"seconds", r.seconds},
       {"fell", r.fell},
       {"fall_time_s", r.fell ? json(r.fallTime) : json(nullptr)},
@@ -142,6 +152,7 @@ int walk(int argc, char** argv) {
       {"heading_drift_deg", r.headingDrift},
       {"yaw_rate_rad_s", r.yawRate},
       {"goal_turn_rad_s", w.turnRate},
+      {"start_heading_rad", w.heading},
       {"duty_factor_measured", r.dutyMeasured},
       {"duty_factor_config", r.dutyConfig},
       {"pushes_applied", r.pushesApplied},

@@ -73,7 +73,7 @@ World::World(int contactPool)
   // such mass ratios (see kPhysicsSubsteps for the rest of the story).
   dynamics_->getSolverInfo().m_numIterations = kSolverIterations;
 
-  // Ground: a static plane at y = 0 (slopes and bumps come with the terrain option).
+  // Ground: a static plane at y = 0; setTerrain adds slopes or bumps (physics/terrain.h).
   shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0));
   btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
   info.m_friction = 1.0f;
@@ -177,11 +177,39 @@ void World::step() {
 double World::terrainHeight(double x, double z, double fallback) const {
   const btVector3 from(static_cast<btScalar>(x), 100, static_cast<btScalar>(z));
   const btVector3 to(static_cast<btScalar>(x), -100, static_cast<btScalar>(z));
-  btCollisionWorld::ClosestRayResultCallback hit(from, to);
-  btCollisionWorld::rayTestSingle(btTransform(btQuaternion::getIdentity(), from),
-                                  btTransform(btQuaternion::getIdentity(), to), ground_,
-                                  ground_->getCollisionShape(), ground_->getWorldTransform(), hit);
-  return hit.hasHit() ? hit.m_hitPointWorld.y() : fallback;
+  // The relief lies above the plane wherever it exists (terrain.h), so its hit is the ground.
+  for (btRigidBody* g : {relief_, ground_}) {
+    if (!g) continue;
+    btCollisionWorld::ClosestRayResultCallback hit(from, to);
+    btCollisionWorld::rayTestSingle(btTransform(btQuaternion::getIdentity(), from),
+                                    btTransform(btQuaternion::getIdentity(), to), g,
+                                    g->getCollisionShape(), g->getWorldTransform(), hit);
+    if (hit.hasHit()) return hit.m_hitPointWorld.y();
+  }
+  return fallback;
+}
+
+void World::setTerrain(std::shared_ptr<const Terrain> terrain) {
+  if (relief_) {
+    removeBody(relief_);  // its contact manifolds go with it
+    relief_ = nullptr;
+  }
+  terrain_ = std::move(terrain);
+  btTransform plane = btTransform::getIdentity();
+  plane.setOrigin(btVector3(0, static_cast<btScalar>(terrain_ ? terrain_->planeHeight() : 0.0), 0));
+  ground_->setWorldTransform(plane);
+  ground_->setInterpolationWorldTransform(plane);
+  dynamics_->updateSingleAabb(ground_);
+  if (!terrain_ || terrain_->flat()) return;
+  registerTerrainCollision(*dispatcher_);
+  btTransform where;
+  shapes_.push_back(makeHeightfieldShape(*terrain_, &where));
+  btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
+  info.m_friction = ground_->getFriction();
+  info.m_startWorldTransform = where;
+  relief_ = new btRigidBody(info);
+  dynamics_->addRigidBody(relief_, kGroundGroup, kGroundMask);
+  bodies_.push_back(relief_);
 }
 
 void World::updateContacts() const {

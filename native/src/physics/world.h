@@ -7,6 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include "physics/terrain.h"
+
 class btBroadphaseInterface;
 class btCollisionDispatcher;
 class btCollisionShape;
@@ -64,10 +66,16 @@ class World {
   // deterministic).
   void step();
 
-  // Height of the ground below (x, z): a downward ray cast against the terrain object alone,
-  // without the broadphase, so it is safe to call from many threads at once (the controller's
-  // ground queries). Returns `fallback` if the
-  // ray misses.
+  // Replaces the ground (physics/terrain.h): a heightfield over the terrain's samples, friction
+  // as the plane's, with the plane moved to the terrain's plane height beyond it. Every physics
+  // shard of a simulation shares one Terrain (its samples are read in place, never copied).
+  // Contacts with the old ground are dropped; bodies standing on it are not moved.
+  void setTerrain(std::shared_ptr<const Terrain> terrain);
+  const Terrain* terrain() const { return terrain_.get(); }
+
+  // Height of the ground below (x, z): a downward ray cast against the terrain objects alone
+  // (the relief, then the plane), without the broadphase, so it is safe to call from many
+  // threads at once (the controller's ground queries). Returns `fallback` if the ray misses.
   double terrainHeight(double x, double z, double fallback = 0.0) const;
 
   // After a step: sets *flag = true for every body whose user pointer is a bool* flag (feet,
@@ -87,6 +95,8 @@ class World {
   // Forces and torques applied since the last step, re-applied before each later sub-step.
   std::vector<std::pair<btVector3, btVector3>> applied_;
   btRigidBody* ground_ = nullptr;
+  btRigidBody* relief_ = nullptr;  // the terrain's heightfield; nullptr while the ground is flat
+  std::shared_ptr<const Terrain> terrain_;
   // The contents the solver's arrays were last sized for (World::step).
   int reservedBodies_ = -1, reservedJoints_ = -1;
 };

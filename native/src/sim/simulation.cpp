@@ -72,6 +72,7 @@ Simulation::Simulation(int threads, uint32_t seed, int shards)
   const int pool = shards == 1 ? physics::World::kDefaultContactPool
                                : std::max(256, physics::World::kDefaultContactPool / shards);
   for (int s = 0; s < shards; ++s) worlds_.push_back(std::make_unique<physics::World>(pool));
+  terrain_ = std::make_shared<physics::Terrain>(physics::TerrainKind::Flat, seed_);
   shardAgents_.resize(shards);
   // One block: header, two matrix buffers, body info; offsets are relative to the header so the
   // layout reads the same from JavaScript (a 32-bit address space) and from native tests.
@@ -157,7 +158,7 @@ int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, in
   const body::Morphology& m = kind == Kind::Biped ? biped_ : quadruped_;
   if (bodyCount() + static_cast<int>(m.segments.size()) > kRenderCapacity) return -1;
   physics::World& world = *worlds_[shard];
-  const double groundY = world.terrainHeight(x, z);
+  const double groundY = standingHeight(world, m, x, z, heading);
   agents_.push_back(std::make_unique<Agent>(world, m, Eigen::Vector3d(x, groundY, z), heading));
   agents_.back()->shard = shard;
   shardAgents_[shard].push_back(agents_.back().get());
@@ -175,6 +176,65 @@ int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, in
   return id;
 }
 
+
+double Simulation::standingHeight(const physics::World& world, const body::Morphology& m,
+                                  double x, double z, double heading) const {
+  const double ground = world.terrainHeight(x, z);
+  if (terrain_->flat()) return ground;
+  // The rest pose's soles lie on y = 0 in the character frame (body/morphology.h). The highest
+  // ground under any of them, on a 1 cm grid over each sole (a ridge or a bump's top between
+  // two grid points rises less than 0.5 mm above them at these grades).
+  const Eigen::Quaterniond yaw(Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()));
+  double top = -std::numeric_limits<double>::infinity();
+  for (const body::Leg& leg : m.legs) {
+    const body::Segment& foot = m.segments[leg.foot];
+    const int nx = static_cast<int>(std::ceil(2 * foot.halfExtents.x() / 0.01));
+    const int nz = static_cast<int>(std::ceil(2 * foot.halfExtents.z() / 0.01));
+    for (int i = 0; i <= nx; ++i) {
+      for (int k = 0; k <= nz; ++k) {
+        const Eigen::Vector3d local(foot.center.x() + foot.halfExtents.x() * (2.0 * i / nx - 1), 0,
+                                    foot.center.z() + foot.halfExtents.z() * (2.0 * k / nz - 1));
+        const Eigen::Vector3d p = yaw * local;
+        top = std::max(top, terrain_->height(x + p.x(), z + p.z()));
+      }
+    }
+  }
+  return std::isfinite(top) ? top : ground;
+}
+
+void Simulation::setTerrain(physics::TerrainKind kind) {
+  setTerrain(std::make_shared<const physics::Terrain>(kind, seed_));
+}
+
+void Simulation::setTerrain(std::shared_ptr<const physics::Terrain> terrain) {
+  terrain_ = std::move(terrain);
+  for (auto& w : worlds_) w->setTerrain(terrain_);
+  // Characters: each stands up anew where its leg frame is, on the new ground.
+  std::vector<int> ids;
+  for (const auto& a : agents_) ids.push_back(a->id);
+  for (int id : ids) resetCharacter(id);
+  // Props: lifted so that their lowest point clears the highest ground under them.
+  for (Prop& p : props_) {
+    btVector3 lo, hi;
+    p.body->getAabb(lo, hi);
+    const physics::World& w = *worlds_[p.shard];
+    double ground = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 9; ++i) {
+      const double fx = 0.5 * (i % 3), fz = 0.5 * (i / 3);
+      ground = std::max(ground, w.terrainHeight(lo.x() + fx * (hi.x() - lo.x()),
+                                                lo.z() + fz * (hi.z() - lo.z())));
+    }
+    const double rise = ground + 0.005 - lo.y();
+    if (rise > 0) {
+      btTransform t = p.body->getWorldTransform();
+      t.setOrigin(t.getOrigin() + btVector3(0, static_cast<btScalar>(rise), 0));
+      p.body->setWorldTransform(t);
+      p.body->setInterpolationWorldTransform(t);
+      p.body->activate(true);
+    }
+  }
+  publish();
+}
 
 void Simulation::demoScene(int characters) {
   SceneRandom rng{seed_};
@@ -425,8 +485,8 @@ bool Simulation::resetCharacter(int id) {
   for (int k = 0; k < old.body->segmentCount(); ++k) oldBodies.push_back(old.body->body(k));
 
   physics::World& world = *worlds_[old.shard];
-  auto fresh = std::make_unique<Agent>(world, m, Eigen::Vector3d(x, world.terrainHeight(x, z), z),
-                                       heading);
+  auto fresh = std::make_unique<Agent>(
+      world, m, Eigen::Vector3d(x, standingHeight(world, m, x, z, heading), z), heading);
   fresh->id = id;
   fresh->kind = kind;
   fresh->shard = old.shard;

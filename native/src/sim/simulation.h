@@ -93,6 +93,15 @@ class Simulation {
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }
   double groundHeight(double x, double z) const { return worlds_[0]->terrainHeight(x, z); }
+
+  // The ground (physics/terrain.h): flat (the default), slope or bumps, the same in every
+  // physics shard; the bumps are drawn from the simulation's seed. Characters already in the
+  // scene are re-placed standing on the new ground where their leg frames are (resetCharacter:
+  // same gait and goal), props are lifted out of it if the new ground is higher.
+  void setTerrain(physics::TerrainKind kind);
+  // The same with a terrain made elsewhere (tests: a heightfield with its relief scaled to 0).
+  void setTerrain(std::shared_ptr<const physics::Terrain> terrain);
+  const physics::Terrain& terrain() const { return *terrain_; }
   // Wall-clock seconds spent so far in the controller loop (thesis timing: from before the
   // first thread starts until the last is done) and in the physics step.
   double controllerSeconds() const { return controllerSeconds_; }
@@ -157,10 +166,16 @@ class Simulation {
   void stepShard(int shard);  // Bullet step and foot contacts of one shard
   void rehomeProps();         // moves each prop into the shard of its nearest character
   int nearestShard(double x, double z, int fallback) const;  // shard of the nearest character
+  // Height at which a character placed at (x, z) facing `heading` stands with its rest pose's
+  // soles on the ground: the highest ground under any sole touches it, so no foot starts inside
+  // uneven ground (on flat ground: the ground height, as always).
+  double standingHeight(const physics::World& world, const body::Morphology& m, double x,
+                        double z, double heading) const;
 
   // The physics shards; one unless asked otherwise. Each is a complete Bullet world with its own
   // ground, dispatcher and solver, so shards can be stepped concurrently without sharing state.
   std::vector<std::unique_ptr<physics::World>> worlds_;
+  std::shared_ptr<const physics::Terrain> terrain_;  // shared by every shard
   body::Morphology biped_, quadruped_;
   // A character: its bodies in the world, its controller, and the buffers the controller reads
   // and writes, allocated once so the per-step loop allocates nothing (defect 10).

@@ -29,6 +29,7 @@ WalkResult runWalk(const WalkOptions& o) {
   WalkResult r;
   r.goalSpeed = o.speed;
   Simulation sim(1, o.seed);
+  if (o.terrain != physics::TerrainKind::Flat) sim.setTerrain(o.terrain);
   sim.spawn(o.character, 0, 0, o.heading);
   if (o.params) sim.controller(0).setParams(*o.params);
   sim.setGoal(0, {o.speed, o.turnRate});
@@ -122,6 +123,7 @@ WalkResult runWalk(const WalkOptions& o) {
   const int taken = static_cast<int>(std::lround(elapsed / physics::kFixedStep));
   r.controllerMicrosPerStep = taken ? (sim.controllerSeconds() - controller0) * 1e6 / taken : 0;
   r.stateHash = sim.stateHash();
+  r.terrainHash = sim.terrain().hash();
   return r;
 }
 

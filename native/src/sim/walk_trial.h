@@ -18,7 +18,7 @@ struct WalkOptions {
   double speed = 1.0;      // goal speed, m/s
   double turnRate = 0.0;   // goal turn rate, rad/s
   double seconds = 20.0;   // simulated
-  std::string terrain = "flat";
+  physics::TerrainKind terrain = physics::TerrainKind::Flat;  // the ground; bumps follow `seed`
   double pushImpulse = 0.0;  // N·s, lateral, at the leg frame; 0 = no pushes
   double pushEvery = 0.0;    // s between pushes (the first after 2 s); phase jittered by the seed
   uint32_t seed = 1;
@@ -46,6 +46,7 @@ struct WalkResult {
   double controllerMicrosPerStep = 0;  // controller only, one character
   double seconds = 0;
   std::string stateHash;
+  std::string terrainHash;  // physics::Terrain::hash() of the ground walked on
   std::vector<double> trace;  // x, y, z, heading every 0.1 s when requested
 };
 

@@ -7,6 +7,7 @@ import type { CrowdMesh } from './crowd-mesh';
 import { pickBody, throwVelocity } from './picking';
 import type { Stage } from './stage';
 import type { SceneCommand, Vec3 } from '../sim/protocol';
+import { groundHeight, intersectGround } from '../sim/terrain-grid';
 
 export interface PointerActions {
   send(command: SceneCommand): void;
@@ -95,7 +96,9 @@ export class PointerInteraction {
     press.dragging = true;
     const target = this.ray(event).intersectPlane(press.plane, new THREE.Vector3());
     if (!target) return;
-    target.y = Math.max(target.y, 0.02); // never pull into the ground
+    // Never pull into the ground.
+    const floor = this.stage.terrain ? groundHeight(this.stage.terrain, target.x, target.z) : 0;
+    target.y = Math.max(target.y, floor + 0.02);
     this.actions.send({ type: 'drag', id: press.hit.id, segment: press.hit.segment, local: toVec3(press.hit.local), target: toVec3(target) });
   }
 
@@ -116,8 +119,16 @@ export class PointerInteraction {
     // A click on the ground (or a shift-click anywhere): throw a box at that point.
     const ray = this.ray(event);
     const hit = event.shiftKey ? this.pickCharacter(ray) : null;
-    const target = hit ? hit.point : ray.intersectPlane(this.ground, new THREE.Vector3());
+    const target = hit ? hit.point : this.groundPoint(ray);
     if (target) this.throwAt(target);
+  }
+
+  /** Where a ray meets the ground as the simulation has it (slopes and bumps included). */
+  private groundPoint(ray: THREE.Ray): THREE.Vector3 | null {
+    const grid = this.stage.terrain;
+    if (!grid?.heights) return ray.intersectPlane(this.ground.set(this.ground.normal, -(grid?.plane ?? 0)), new THREE.Vector3());
+    const p = intersectGround(grid, ray.origin, ray.direction);
+    return p ? new THREE.Vector3(p.x, p.y, p.z) : null;
   }
 
   private cancel(): void {

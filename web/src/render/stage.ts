@@ -1,7 +1,10 @@
 // The three.js stage the crowd stands on: renderer, sky and fog, lights with shadows, the ground
-// with a metre grid, and an orbit camera. Units are metres, y up (DESIGN.md, conventions).
+// with a metre grid (flat, or the terrain's relief drawn from the physics' own samples), and an
+// orbit camera. Units are metres, y up (DESIGN.md, conventions).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import type { TerrainGrid } from '../sim/terrain-grid';
+import { TerrainMesh } from './terrain-mesh';
 
 const SKY = 0xbfd4e6;
 const GROUND = 0x9aa68c;
@@ -55,14 +58,44 @@ export class Stage {
     // the ground readable, and mipmapping fades it out with distance instead of into moiré.
     // (Line geometry such as GridHelper is unreliable here: long lines crossing the view get
     // dropped by some software rasterisers, SwiftShader among them.)
-    const ground = new THREE.Mesh(
+    const texture = this.groundTexture();
+    this.ground = new THREE.Mesh(
       new THREE.PlaneGeometry(GROUND_SIZE, GROUND_SIZE).rotateX(-Math.PI / 2),
-      new THREE.MeshStandardMaterial({ map: this.groundTexture(), roughness: 0.95 }),
+      new THREE.MeshStandardMaterial({ map: texture, roughness: 0.95 }),
     );
-    ground.receiveShadow = true;
-    this.scene.add(ground);
+    this.ground.receiveShadow = true;
+    this.scene.add(this.ground);
+    // The relief's material: the same texture, its uv in metres (one grid square per metre).
+    const reliefTexture = texture.clone();
+    reliefTexture.repeat.set(1, 1);
+    this.reliefMaterial = new THREE.MeshStandardMaterial({ map: reliefTexture, roughness: 0.95 });
 
     this.followTarget();
+  }
+
+  /** The flat ground: everywhere on flat terrain, beyond the relief's grid otherwise. */
+  private readonly ground: THREE.Mesh;
+  private readonly reliefMaterial: THREE.MeshStandardMaterial;
+  private relief: TerrainMesh | null = null;
+  /** The ground the stage draws (the last grid given to setTerrain). */
+  terrain: TerrainGrid | null = null;
+
+  /**
+   * Draws the ground the simulation has: the plane at its height, and the relief's samples as a
+   * mesh (terrain-mesh.ts). Replaces whatever ground was drawn before.
+   */
+  setTerrain(grid: TerrainGrid): void {
+    this.terrain = grid;
+    this.ground.position.y = grid.plane;
+    if (this.relief) {
+      this.scene.remove(this.relief.group);
+      this.relief.dispose();
+      this.relief = null;
+    }
+    if (!grid.heights) return;
+    this.relief = new TerrainMesh(grid, this.reliefMaterial);
+    this.relief.follow(this.controls.target);
+    this.scene.add(this.relief.group);
   }
 
   /** Drawing-buffer pixels per CSS pixel: the device's ratio (at most 2) times the render scale. */
@@ -130,6 +163,13 @@ export class Stage {
     shadowCamera.updateProjectionMatrix();
   }
 
+  /** Puts the camera at `from`, looking at `to`. */
+  view(from: THREE.Vector3, to: THREE.Vector3): void {
+    this.controls.target.copy(to);
+    this.camera.position.copy(from);
+    this.controls.update();
+  }
+
   /**
    * Follow mode: moves the camera with a point (the selected character), keeping the view's
    * direction and distance, eased so that the character's own sway does not shake the view.
@@ -144,6 +184,7 @@ export class Stage {
   render(): void {
     this.controls.update();
     this.followTarget();
+    this.relief?.follow(this.controls.target);
     this.renderer.render(this.scene, this.camera);
   }
 

@@ -3,6 +3,7 @@
 // The module is Emscripten 3.1.6 output: `gaitlab.mjs` default-exports a factory that resolves
 // to the Module object. Its memory is fixed-size and shared (pthreads), so HEAPU8.buffer is a
 // SharedArrayBuffer that stays valid for the module's lifetime.
+import { FLAT_GROUND, type TerrainGrid, type TerrainKind } from './terrain-grid';
 
 /** The parts of the Emscripten Module that gaitlab uses. Pointers are byte offsets (numbers). */
 export interface GaitlabModule {
@@ -30,6 +31,10 @@ export interface GaitlabModule {
   _gl_sim_set_auto_reset(sim: number, seconds: number): void;
   _gl_sim_character_count(sim: number): number;
   _gl_sim_character_info(sim: number, out: number, capacity: number): number;
+  // Terrain (c_api.h, "Terrain"); absent from builds before it.
+  _gl_sim_set_terrain?(sim: number, kind: number): number;
+  _gl_sim_terrain_grid?(sim: number, out: number): void;
+  _gl_sim_terrain_heights?(sim: number): number;
   _malloc(bytes: number): number;
   _free(pointer: number): void;
   HEAPF64: Float64Array;
@@ -61,6 +66,10 @@ export const INFO = {
   phase: 11,
   fields: 12,
 } as const;
+
+/** Terrain kinds of gl_sim_set_terrain (GL_TERRAIN_*), and the fields of gl_sim_terrain_grid (GL_GRID_*). */
+export const TERRAIN: Record<TerrainKind, number> = { flat: 0, slope: 1, bumps: 2 };
+const GRID = { kind: 0, columns: 1, rows: 2, spacing: 3, originX: 4, originZ: 5, plane: 6, fields: 7 } as const;
 
 /** Options the 3.1.6 factory understands that gaitlab passes. */
 export interface GaitlabModuleOptions {
@@ -229,6 +238,42 @@ export class Simulation {
       return this.module._gl_sim_set_params(this.sim, id, kind, pointer) === 0 ? null : this.lastError();
     } finally {
       this.module._free(pointer);
+    }
+  }
+
+  // ---- Terrain ----
+
+  /** Whether this build of the module has terrain (gl_sim_set_terrain). */
+  get hasTerrain(): boolean {
+    return typeof this.module._gl_sim_set_terrain === 'function';
+  }
+
+  /** Sets the ground; characters are re-placed on it. Returns false for a build without terrain. */
+  setTerrain(kind: TerrainKind): boolean {
+    if (!this.module._gl_sim_set_terrain) return kind === 'flat';
+    return this.module._gl_sim_set_terrain(this.sim, TERRAIN[kind]) === 0;
+  }
+
+  /** The ground's grid and a copy of its samples (the module's array must not leave the worker). */
+  terrainGrid(): TerrainGrid {
+    if (!this.module._gl_sim_terrain_grid || !this.module._gl_sim_terrain_heights) return { ...FLAT_GROUND };
+    const out = this.module._malloc(GRID.fields * 8);
+    try {
+      this.module._gl_sim_terrain_grid(this.sim, out);
+      const f = this.module.HEAPF64.slice(out >> 3, (out >> 3) + GRID.fields);
+      const kinds = Object.keys(TERRAIN) as TerrainKind[];
+      const columns = f[GRID.columns];
+      const rows = f[GRID.rows];
+      const pointer = this.module._gl_sim_terrain_heights(this.sim);
+      const heights = pointer && columns > 0 && rows > 0
+        ? new Float32Array(this.module.HEAPU8.buffer, pointer, columns * rows).slice()
+        : null;
+      return {
+        kind: kinds.find((k) => TERRAIN[k] === f[GRID.kind]) ?? 'flat',
+        columns, rows, spacing: f[GRID.spacing], originX: f[GRID.originX], originZ: f[GRID.originZ], plane: f[GRID.plane], heights,
+      };
+    } finally {
+      this.module._free(out);
     }
   }
 

@@ -4,6 +4,7 @@
 // other. Render transforms never do: the worker sends the WASM memory (a SharedArrayBuffer) and
 // the render-header pointer once per scene, and the main thread reads every frame straight out of
 // that memory (data flow step 3, see render-buffer.ts).
+import { isTerrainKind, type TerrainGrid, type TerrainKind } from './terrain-grid';
 
 /** How the worker should set up the simulation. */
 export interface SimOptions {
@@ -17,6 +18,8 @@ export interface SimOptions {
   characters: number;
   /** Start paused at step 0 (`?paused=1`): for stepping through a run, and for tests. */
   paused?: boolean;
+  /** The ground the scene starts on (`?terrain=slope`); flat when absent. */
+  terrain?: TerrainKind;
 }
 
 export type Vec3 = [number, number, number];
@@ -59,7 +62,9 @@ export type SceneCommand =
    */
   | { type: 'learner'; character: CharacterType; json: string; speed: number; turn: number; loopSeconds: number }
   /** Removes the learner, if there is one. */
-  | { type: 'removeLearner' };
+  | { type: 'removeLearner' }
+  /** The ground: flat, slope or bumps. Every character is re-placed standing on the new ground. */
+  | { type: 'setTerrain'; terrain: TerrainKind };
 
 /** One character as the worker last saw it (gl_sim_character_info). */
 export interface CharacterStatus {
@@ -121,6 +126,8 @@ export interface SimStats {
   commandsApplied: number;
   /** The optimize panel's learner's id, or null if there is none. */
   learner: number | null;
+  /** The ground the simulation has now. */
+  terrain: TerrainKind;
 }
 
 /** Sim worker → main thread. */
@@ -141,6 +148,11 @@ export type SimEvent =
     }
   /** Answer to getParams / getPreset: the gait file's JSON, or why there is none. */
   | { type: 'params'; request: number; json: string | null; error: string | null }
+  /**
+   * The ground of scene `generation` changed (or the scene is new): its grid and samples, to draw
+   * it exactly as the physics has it. Sent after `ready` and after every setTerrain.
+   */
+  | { type: 'terrain'; generation: number; grid: TerrainGrid }
   /** A scene command the simulation refused (e.g. parameters out of bounds). */
   | { type: 'commandError'; message: string }
   /**
@@ -167,8 +179,8 @@ export function defaultThreads(hardwareConcurrency: number | undefined): number 
 }
 
 /**
- * Simulation options from the page's query string, e.g. `?threads=1&seed=7&characters=12`.
- * Values out of range or not integers are ignored in favour of the defaults.
+ * Simulation options from the page's query string, e.g. `?threads=1&seed=7&characters=12` (and
+ * `terrain=slope|bumps`). Values out of range or not integers are ignored in favour of the defaults.
  */
 export function simOptionsFromQuery(search: string, defaults: SimOptions): SimOptions {
   const query = new URLSearchParams(search);
@@ -184,6 +196,7 @@ export function simOptionsFromQuery(search: string, defaults: SimOptions): SimOp
     seed: int('seed', 0, 0xffffffff, defaults.seed),
     characters: int('characters', 0, 256, defaults.characters),
     ...(query.get('paused') === '1' ? { paused: true } : {}),
+    ...(isTerrainKind(query.get('terrain')) && query.get('terrain') !== 'flat' ? { terrain: query.get('terrain') as TerrainKind } : {}),
   };
 }
 

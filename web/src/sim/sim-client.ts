@@ -2,6 +2,7 @@
 // statistics and render-buffer reader. It never steps anything itself (DESIGN.md, data flow).
 import { errorMessage, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
 import { RenderBufferReader } from './render-buffer';
+import type { TerrainGrid } from './terrain-grid';
 
 export interface SimClientEvents {
   /** A new scene's render buffer is ready to be drawn (after start and after every reset). */
@@ -14,6 +15,8 @@ export interface SimClientEvents {
   /** The current render buffer is about to be freed: stop reading it, synchronously. */
   onRelease?: () => void;
   onStats?: (stats: SimStats) => void;
+  /** The ground changed (or a new scene has one): draw it from these samples. */
+  onTerrain?: (grid: TerrainGrid, generation: number) => void;
   onError?: (message: string) => void;
 }
 
@@ -107,6 +110,9 @@ export class SimClient {
         else pending.reject(new Error(event.error ?? 'no parameters'));
         return;
       }
+      case 'terrain':
+        this.events.onTerrain?.(event.grid, event.generation);
+        return;
       case 'commandError':
         this.events.onCommandError?.(event.message);
         return;

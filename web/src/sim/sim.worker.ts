@@ -6,6 +6,7 @@
 // consists of workers nested in this one.
 import { FixedStepClock } from './fixed-step-clock';
 import { gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
+import type { TerrainKind } from './terrain-grid';
 import {
   errorMessage,
   type CharacterStatus,
@@ -32,7 +33,7 @@ const STATS_INTERVAL_MS = 250;
 
 // The DOM lib's `self` is a Window; this is the part of DedicatedWorkerGlobalScope used here.
 interface WorkerScope {
-  postMessage(message: SimEvent): void;
+  postMessage(message: SimEvent, transfer?: Transferable[]): void;
   onmessage: ((event: MessageEvent<SimCommand>) => void) | null;
 }
 const scope = self as unknown as WorkerScope;
@@ -122,6 +123,8 @@ function newScene(): void {
   if (!module || !options) return;
   // The previous simulation is gone by now (see 'released'): its pthreads are back in the pool.
   sim = new Simulation(module, options.threads, options.seed);
+  // The ground first, so that the characters are spawned standing on it.
+  if (terrain !== 'flat' && !sim.setTerrain(terrain)) terrain = 'flat';
   gridColumns = Math.max(1, Math.ceil(Math.sqrt(options.characters)));
   nextSlot = 0;
   pending = [];
@@ -135,6 +138,7 @@ function newScene(): void {
   // What the new scene keeps from the session (goal, auto-reset, gaits of a whole type) opens
   // its command log, so that the log alone with the seed still replays the run.
   const carried: SceneCommand[] = [
+    ...(terrain !== 'flat' ? [{ type: 'setTerrain' as const, terrain }] : []),
     { type: 'setGoal', id: 'all', speed: lastGoal.speed, turn: lastGoal.turn },
     { type: 'autoReset', seconds: autoResetSeconds },
     ...Object.entries(typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
@@ -153,10 +157,20 @@ function newScene(): void {
     schema: module._gl_schema_json ? module.UTF8ToString(module._gl_schema_json()) : null,
     optimizerSchema: module._gl_opt_settings_json ? module.UTF8ToString(module._gl_opt_settings_json()) : null,
   });
+  postTerrain();
   if (!paused) clock.start(now());
 }
 
 let autoResetSeconds = 0;
+/** The ground: kept across new scenes, like the goal and the auto-reset. */
+let terrain: TerrainKind = 'flat';
+
+/** Sends the ground's grid and samples to the main thread (a copy, transferred). */
+function postTerrain(): void {
+  if (!sim) return;
+  const grid = sim.terrainGrid();
+  scope.postMessage({ type: 'terrain', generation, grid }, grid.heights ? [grid.heights.buffer] : []);
+}
 
 /** Places `count` characters on the next free grid places, centred on the origin. */
 function addCharacters(count: number, type: (i: number) => 'biped' | 'quadruped'): void {
@@ -244,6 +258,14 @@ function apply(command: SceneCommand): void {
       if (learner) sim.removeCharacter(learner.id);
       learner = null;
       return;
+    case 'setTerrain':
+      if (!sim.setTerrain(command.terrain)) {
+        post({ type: 'commandError', message: `this build of the simulation has no '${command.terrain}' terrain` });
+        return;
+      }
+      terrain = command.terrain;
+      postTerrain();
+      return;
     default: {
       const unknown: never = command;
       throw new Error(`unknown scene command ${JSON.stringify(unknown)}`);
@@ -300,6 +322,7 @@ function reportStats(): void {
     characters: characterStatus(),
     commandsApplied,
     learner: learner?.id ?? null,
+    terrain,
   });
   stepWallMs = 0;
   stepsTimed = 0;
@@ -348,6 +371,7 @@ async function init(initial: SimOptions): Promise<void> {
   }
   options = initial;
   paused = initial.paused === true;
+  terrain = initial.terrain ?? 'flat';
   module = await loadGaitlab(initial.wasmUrl, {
     print: (text) => console.log(`[gaitlab] ${text}`),
     printErr: (text) => console.warn(`[gaitlab] ${text}`),

@@ -1,8 +1,9 @@
 // The control panel (lil-gui, top right): simulation (pause, step, slow motion, new scene), the
-// crowd (add, remove, reset, fallen characters), steering, ground, and the gait's share/export
-// buttons. It only sends commands; what it shows follows the worker's reports.
+// crowd (add, remove, reset, fallen characters), steering, ground (flat, slope, bumps), and the
+// gait's share/export buttons. It only sends commands; what it shows follows the worker's reports.
 import GUI, { type Controller } from 'lil-gui';
 import { TIME_SCALES, type CharacterType, type TimeScale } from '../sim/protocol';
+import { TERRAIN_KINDS, type TerrainKind } from '../sim/terrain-grid';
 
 export interface PanelActions {
   togglePause(): void;
@@ -17,6 +18,8 @@ export interface PanelActions {
   steer(speed: number, turn: number, target: 'selected' | 'all'): void;
   follow(on: boolean): void;
   deselect(): void;
+  /** The ground: flat, a ±5° slope, or 3 cm bumps. */
+  terrain(kind: TerrainKind): void;
 }
 
 export class ControlPanel {
@@ -31,12 +34,13 @@ export class ControlPanel {
     turnDegrees: 0,
     steer: 'all' as 'selected' | 'all',
     follow: false,
-    terrain: 'flat',
+    terrain: 'flat' as TerrainKind,
   };
   private readonly pause: Controller;
   private readonly stepButton: Controller;
   private readonly selectionButtons: Controller[];
   private readonly steerTarget: Controller;
+  private readonly terrainControl: Controller;
   readonly gaitFolder: GUI;
 
   constructor(actions: PanelActions) {
@@ -74,20 +78,22 @@ export class ControlPanel {
     steer.add(v, 'follow').name('follow selected').onChange((on: boolean) => actions.follow(on)).listen();
 
     const ground = this.gui.addFolder('Ground');
-    const terrain = ground.add(v, 'terrain', ['flat', 'slope', 'bumps']).name('terrain').disable();
-    // The physics world has a flat ground plane only so far; the option arrives with terrain in
-    // physics/world (World::terrainHeight already answers for whatever ground there is).
-    terrain.domElement.title = 'Slopes and bumps arrive with the terrain option of the physics world; this build has flat ground only.';
-    ground.$children.append(
-      Object.assign(document.createElement('div'), {
-        className: 'panel-note',
-        textContent: 'flat only in this build: slope and bumps come with the physics world’s terrain option',
-      }),
-    );
+    this.terrainControl = ground
+      .add(v, 'terrain', [...TERRAIN_KINDS])
+      .name('terrain')
+      .onChange((kind: TerrainKind) => actions.terrain(kind))
+      .listen();
+    this.terrainControl.domElement.title =
+      'flat; slope: ridges and valleys of ±5° across +z (the crowd walks up and down); bumps: smooth random bumps 2–3 cm high, 0.5 m apart';
 
-    ground.close(); // one fixed choice for now: keep the space for the gait
     this.gaitFolder = this.gui.addFolder('Gait');
     this.setSelection(null);
+  }
+
+  /** Shows the ground the simulation has (after a change it confirmed, or a new scene). */
+  setTerrain(kind: TerrainKind): void {
+    this.values.terrain = kind;
+    this.terrainControl.updateDisplay();
   }
 
   /** Follows the worker's pause state (the button says what a click will do). */

@@ -141,6 +141,36 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
       swingLeg(li, s, yaw, velocityH, torques);
   }
 
+  // Spine twist from the stance loads (beyond the thesis, two leg frames only). A leg frame
+  // borne by one foot carries its share of the weight at that hip, off its centre: in a trot the
+  // front frame stands on (say) its left hip and the back on its right, and each needs a roll
+  // torque of load × hip offset (≈ 160 N × 9 cm ≈ 14 N·m) just to stay level. Left to its
+  // stance hip (§3.1.3) that torque must come back from the ground as a sideways push at the
+  // foot (a leg on a small foot cannot hold a torque), front and back pushing opposite ways:
+  // a yaw couple and sideways drift (controller-notes §8). Between the two frames the needs are
+  // equal and opposite, which a twist of the spine delivers internally. The spine joints get
+  // the differential part as a torque about the heading's forward axis; the frames' torque
+  // feedback below then counts it as already exerted.
+  // The same need is added to the torque each frame's stance legs must deliver (`net` below):
+  // the orientation PD alone would see it only as an error to grow into.
+  const Vector3d forward = headingForward(yaw);
+  double need[kMaxLegFrames] = {0, 0};  // roll torque each frame needs about `forward`
+  if (frames > 1 && stanceIn[0] > 0 && stanceIn[1] > 0 && params_.gains.spineTwistLoad > 0 &&
+      !m_.spine.empty()) {
+    for (size_t l = 0; l < m_.legs.size(); ++l) {
+      if (!player_.leg(static_cast<int>(l)).stance) continue;
+      const body::Leg& leg = m_.legs[l];
+      const Vector3d arm = jointPivot(leg.upper, s) - s.segments[leg.legFrame].position;
+      need[legFrameIndex(leg)] -= params_.gains.spineTwistLoad *
+                                  arm.cross(Vector3d(0, stanceLoad, 0)).dot(forward);
+    }
+    // A torque t on a spine joint acts +t on its child and −t on its parent: along the chain
+    // front → links → back the links cancel, the front frame gets −t and the back +t.
+    const double twist = 0.5 * (need[0] - need[1]);
+    for (int link : m_.spine) torques[link] -= twist * forward;
+    torques[m_.legFrames[1]] -= twist * forward;
+  }
+
   // Leg-frame torque feedback (§3.1.3, eq. 3.4–3.5): the torque each leg frame should feel, a PD
   // towards its orientation graphs in the heading frame, less what the swing hips and the spine
   // already exert on it: `net` is what its stance legs must add.
@@ -154,6 +184,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
                                 Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
     net[f] = orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
                            frame.angularVelocity);
+    net[f] += need[f] * forward;
     for (int i = 0; i < segments; ++i) {
       if (m_.segments[i].parent != lf) continue;
       bool stanceHip = false;

@@ -45,6 +45,10 @@ struct JointGains {
   double ankleKp = 0, ankleKd = 0;          // swing foot, world frame (§3.1.6)
   double stanceAnkleKp = 0, stanceAnkleKd = 0;  // stance foot relative to its shin (§3.1.7)
   double spineKp = 0, spineKd = 0;
+  // Supported stance (controller.cpp, beyond the thesis): share of the roll moment that the
+  // stance legs' weight, borne off-centre, puts on each leg frame, handed between the leg frames
+  // as a spine twist torque (a trot's diagonal: front and back need opposite roll). 0 = none.
+  double spineTwistLoad = 0;
   double stanceKneeFlexion = 0;  // rad, the stance knee's PD target
   // Share of the hip torque kept about the thigh's long axis. A limb's inertia about its own
   // axis is ~20× smaller than about the hip, so at 120 Hz the gains that hold the thigh's swing

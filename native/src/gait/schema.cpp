@@ -107,6 +107,10 @@ Table build(Character c) {
     // fastest mode less): k_d = 5 alternated ±45 N·m every step, k_d ≤ 1 is smooth (§8).
     scalar("gains.spineKd", kJointGains, {0, 1.5}, "N·m·s/rad", "spine PD derivative gain",
            g.spineKd);
+    scalar("gains.spineTwistLoad", kJointGains, {0, 1.5}, "1",
+           "share of the stance feet's off-centre load moment carried as spine twist between the "
+           "leg frames (a trot's diagonal; beyond the thesis)",
+           g.spineTwistLoad);
   }
   scalar("gains.stanceKneeFlexion", kStance, {0, 1.0}, "rad", "knee bend the stance knee's PD holds",
          g.stanceKneeFlexion);

@@ -10,6 +10,7 @@
 #endif
 
 #include "physics/convert.h"
+#include "physics/solver.h"
 
 namespace gaitlab::physics {
 
@@ -21,7 +22,7 @@ namespace {
 // This solver sizes them for the worst case of the world's contents instead, once per change of
 // contents (World::step), so that steps in a steady scene allocate nothing (DESIGN.md, parallel
 // execution; tests/native/hot_path_test.cpp).
-class ReservingSolver : public btSequentialImpulseConstraintSolver {
+class ReservingSolver : public InterleavedSolver {
  public:
   void reserveFor(int bodies, int joints) {
     // A 6-DOF joint has at most 12 rows (a limit and a motor per axis); a body touches at most
@@ -36,6 +37,7 @@ class ReservingSolver : public btSequentialImpulseConstraintSolver {
     m_orderTmpConstraintPool.reserve(contactPoints);
     m_tmpSolverContactFrictionConstraintPool.reserve(2 * contactPoints);
     m_orderFrictionConstraintPool.reserve(2 * contactPoints);
+    reserveSchedule(jointRows + 3 * contactPoints, bodies + 1);
   }
 };
 
@@ -145,6 +147,23 @@ void World::moveBodyTo(btRigidBody* body, World& other) {
   }
   other.dynamics_->addRigidBody(body, group, mask);
   other.bodies_.push_back(body);
+}
+
+void World::setFastSolver(bool on) {
+#if !GAITLAB_BULLET_MT
+  static_cast<ReservingSolver*>(solver_.get())->setInterleaving(on);
+#else
+  (void)on;
+#endif
+}
+
+std::pair<long, long> World::solverBatches() const {
+#if !GAITLAB_BULLET_MT
+  const auto& c = static_cast<const ReservingSolver*>(solver_.get())->counts();
+  return {c.batches, c.fast};
+#else
+  return {0, 0};
+#endif
 }
 
 void World::step() {

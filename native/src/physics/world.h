@@ -60,6 +60,12 @@ class World {
   // state and collision filter. Its contact manifolds stay behind and are rebuilt in `other`.
   void moveBodyTo(btRigidBody* body, World& other);
 
+  // The solver's sweep over the constraint rows: InterleavedSolver's (the default) or Bullet's own.
+  // Both compute bit for bit the same (physics/solver.h); this switch is for tests and measurements.
+  void setFastSolver(bool on);
+  // Solver batches so far, and how many the fast sweep solved (the rest fell back to Bullet's).
+  std::pair<long, long> solverBatches() const;
+
   // One fixed step of kFixedStep seconds, as kPhysicsSubsteps Bullet steps (no interpolation:
   // deterministic).
   void step();

@@ -66,6 +66,13 @@ class World {
   // Solver batches so far, and how many the fast sweep solved (the rest fell back to Bullet's).
   std::pair<long, long> solverBatches() const;
 
+  // Sizes the solver's working arrays for the world's contents (the worst case: see
+  // ReservingSolver in world.cpp). step() does it whenever the contents have changed since, but
+  // the allocation is then part of a step: for a crowd of 100 quadrupeds it made the first step
+  // of a fresh simulation take twice as long as the others (docs/parallel.md, the p99). Scene
+  // building calls it instead (sim::Simulation, after adding bodies). Changes no result.
+  void reserve();
+
   // One fixed step of kFixedStep seconds, as kPhysicsSubsteps Bullet steps (no interpolation:
   // deterministic).
   void step();

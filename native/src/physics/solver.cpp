@@ -4,7 +4,6 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 
 namespace gaitlab::physics {
@@ -161,8 +160,11 @@ bool InterleavedSolver::buildSchedule(btTypedConstraint** constraints, int numCo
 
   // A row with no effective mass (zero Jacobian) has a residual that is not a number, and
   // Bullet's running maximum then depends on the order of the rows.
-  for (int s = 0; s < numRows; ++s)
-    if (!std::isfinite(1. / rows_[s]->m_jacDiagABInv)) return false;
+  // (1. / x in double is infinite or NaN exactly when the float x is 0 or NaN.)
+  for (int s = 0; s < numRows; ++s) {
+    const btScalar j = rows_[s]->m_jacDiagABInv;
+    if (j == 0 || j != j) return false;
+  }
 
   // Per solver body: written by rows (it stands for a body, not for the static world), and
   // whether its linear and angular factors are exactly 1.
@@ -208,12 +210,18 @@ bool InterleavedSolver::buildSchedule(btTypedConstraint** constraints, int numCo
   group_.assign(numBodies, -1);
   int groups = 0, staticGroup = -1;
   rowGroup_.resize(numRows);
+  lastA = lastB = -1;
+  int lastGroup = -1;
   for (int s = 0; s < numRows; ++s) {
     const btSolverConstraint* c = rows_[s];
     if (s >= firstFriction) c = &m_tmpSolverContactConstraintPool[c->m_frictionIndex];
-    const int key = live(c->m_solverBodyIdA)   ? c->m_solverBodyIdA
-                    : live(c->m_solverBodyIdB) ? c->m_solverBodyIdB
-                                               : -1;
+    if (c->m_solverBodyIdA == lastA && c->m_solverBodyIdB == lastB) {  // as the row before
+      rowGroup_[s] = lastGroup;
+      continue;
+    }
+    lastA = c->m_solverBodyIdA;
+    lastB = c->m_solverBodyIdB;
+    const int key = live(lastA) ? lastA : live(lastB) ? lastB : -1;
     int g;
     if (key < 0) {
       if (staticGroup < 0) staticGroup = groups++;
@@ -223,7 +231,7 @@ bool InterleavedSolver::buildSchedule(btTypedConstraint** constraints, int numCo
       if (group_[root] < 0) group_[root] = groups++;
       g = group_[root];
     }
-    rowGroup_[s] = g;
+    rowGroup_[s] = lastGroup = g;
   }
 
   // Each group's rows in sweep order (a stable counting sort).

@@ -5,7 +5,7 @@
 // during the step. Built only on request:
 //
 //   ninja -C build/native gaitlab_step_times
-//   build/native/gaitlab_step_times LEGS CHARACTERS STEPS MODE THREADS [RUNS]
+//   build/native/gaitlab_step_times LEGS CHARACTERS STEPS MODE THREADS [RUNS [series]]
 //
 // Prints one JSON object: percentiles of the step's wall time over all steps, over the steps in
 // which no thread was preempted, and of the calling thread's CPU time; how many steps were
@@ -127,6 +127,13 @@ int main(int argc, char** argv) {
     std::printf("%s{\"run\": %d, \"step\": %d, \"wall\": %.2f, \"cpu\": %.2f, \"switches\": %ld}",
                 i ? ", " : "", sorted[i].run, sorted[i].step, sorted[i].wall, sorted[i].cpu,
                 sorted[i].switches);
-  std::printf("]}\n");
+  std::printf("]");
+  // With a seventh argument "series": the per-step-index CPU medians themselves.
+  if (argc > 7 && std::string(argv[7]) == "series") {
+    std::printf(", \"cpu_ms_by_step_index\": [");
+    for (size_t i = 0; i < byIndex.size(); ++i) std::printf("%s%.3f", i ? ", " : "", byIndex[i]);
+    std::printf("]");
+  }
+  std::printf("}\n");
   return 0;
 }

@@ -10,6 +10,7 @@
 #endif
 
 #include "physics/convert.h"
+#include "physics/solver.h"
 
 namespace gaitlab::physics {
 
@@ -19,11 +20,16 @@ namespace {
 // whenever a step needs more rows than any step before (a joint reaching a limit adds rows, every
 // new contact point three): a heap allocation in the middle of a step, at a moment nobody chose.
 // This solver sizes them for the worst case of the world's contents instead, once per change of
-// contents (World::step), so that steps in a steady scene allocate nothing (DESIGN.md, parallel
-// execution; tests/native/hot_path_test.cpp).
-class ReservingSolver : public btSequentialImpulseConstraintSolver {
+// contents (World::reserve, at scene building, or else at the start of the next step), so that
+// steps in a steady scene allocate nothing (DESIGN.md, parallel execution;
+// tests/native/hot_path_test.cpp).
+class ReservingSolver : public InterleavedSolver {
  public:
   void reserveFor(int bodies, int joints) {
+    // With some room to spare, so that a prop arriving from another shard (sim::Simulation's
+    // rehomeProps, between steps) does not make the next step reallocate.
+    bodies = (bodies + 31) / 32 * 32;
+    joints = (joints + 31) / 32 * 32;
     // A 6-DOF joint has at most 12 rows (a limit and a motor per axis); a body touches at most
     // the ground and a couple of props, 4 points per contact manifold, each point a normal row
     // and two friction rows.
@@ -36,6 +42,7 @@ class ReservingSolver : public btSequentialImpulseConstraintSolver {
     m_orderTmpConstraintPool.reserve(contactPoints);
     m_tmpSolverContactFrictionConstraintPool.reserve(2 * contactPoints);
     m_orderFrictionConstraintPool.reserve(2 * contactPoints);
+    reserveSchedule(jointRows + 3 * contactPoints, bodies + 1);
   }
 };
 
@@ -147,7 +154,24 @@ void World::moveBodyTo(btRigidBody* body, World& other) {
   other.bodies_.push_back(body);
 }
 
-void World::step() {
+void World::setFastSolver(bool on) {
+#if !GAITLAB_BULLET_MT
+  static_cast<ReservingSolver*>(solver_.get())->setInterleaving(on);
+#else
+  (void)on;
+#endif
+}
+
+std::pair<long, long> World::solverBatches() const {
+#if !GAITLAB_BULLET_MT
+  const auto& c = static_cast<const ReservingSolver*>(solver_.get())->counts();
+  return {c.batches, c.fast};
+#else
+  return {0, 0};
+#endif
+}
+
+void World::reserve() {
   const int bodies = dynamics_->getNumCollisionObjects(), joints = dynamics_->getNumConstraints();
   if (bodies != reservedBodies_ || joints != reservedJoints_) {
 #if !GAITLAB_BULLET_MT
@@ -156,6 +180,11 @@ void World::step() {
     reservedBodies_ = bodies;
     reservedJoints_ = joints;
   }
+  applied_.reserve(bodies_.size());
+}
+
+void World::step() {
+  reserve();
   // Each stepSimulation() call ends by clearing the applied forces and torques, so the
   // controller's joint torques, applied once per control step, are saved and applied again
   // before every later sub-step: they act for the whole 1/120 s, not only its first half.

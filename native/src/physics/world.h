@@ -62,6 +62,19 @@ class World {
   // state and collision filter. Its contact manifolds stay behind and are rebuilt in `other`.
   void moveBodyTo(btRigidBody* body, World& other);
 
+  // The solver's sweep over the constraint rows: InterleavedSolver's (the default) or Bullet's own.
+  // Both compute bit for bit the same (physics/solver.h); this switch is for tests and measurements.
+  void setFastSolver(bool on);
+  // Solver batches so far, and how many the fast sweep solved (the rest fell back to Bullet's).
+  std::pair<long, long> solverBatches() const;
+
+  // Sizes the solver's working arrays for the world's contents (the worst case: see
+  // ReservingSolver in world.cpp). step() does it whenever the contents have changed since, but
+  // the allocation is then part of a step: for a crowd of 100 quadrupeds it made the first step
+  // of a fresh simulation take twice as long as the others (docs/parallel.md, the p99). Scene
+  // building calls it instead (sim::Simulation, after adding bodies). Changes no result.
+  void reserve();
+
   // One fixed step of kFixedStep seconds, as kPhysicsSubsteps Bullet steps (no interpolation:
   // deterministic).
   void step();

@@ -144,6 +144,7 @@ int Simulation::spawn(Kind kind, double x, double z, double heading) {
         half, 4.0, {x, 1.5, z}, Eigen::Quaterniond(Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY())),
         physics::kPropGroup, physics::kPropMask, 0.8);
     props_.push_back({b, shard});
+    worlds_[shard]->reserve();
     addRenderBody(b, {{0.15f, 0.15f, 0.15f}, 0xe0c068ffu, -1, 0});
     return nextId_++;
   }
@@ -162,6 +163,7 @@ int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, in
   agents_.push_back(std::make_unique<Agent>(world, m, Eigen::Vector3d(x, groundY, z), heading));
   agents_.back()->shard = shard;
   shardAgents_[shard].push_back(agents_.back().get());
+  world.reserve();  // scene building, not the next step, sizes the solver for the new figure
   const int id = nextId_++;
   agents_.back()->id = id;
   agents_.back()->kind = kind;
@@ -409,6 +411,7 @@ int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& vel
                                           Eigen::Quaterniond::Identity(), physics::kPropGroup,
                                           physics::kPropMask, 0.8);
   props_.push_back({b, shard});
+  worlds_[shard]->reserve();
   b->setLinearVelocity(physics::toBt(velocity));
   // Thrown boxes are the warm wood colour of the scene's boxes, a shade darker to tell them apart.
   const float h = static_cast<float>(half);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "body/morphology.h"
@@ -69,6 +70,21 @@ class Simulation {
   void crowdScene(Crowd crowd, int characters, double spacing);
 
   void setMode(Mode mode) { mode_ = mode; }
+  // Bullet's own constraint sweep instead of the faster one that computes the same
+  // (physics/solver.h), in every shard: for tests and measurements.
+  void setFastSolver(bool on) {
+    for (auto& w : worlds_) w->setFastSolver(on);
+  }
+  // Solver batches so far over every shard, and how many the fast sweep solved.
+  std::pair<long, long> solverBatches() const {
+    std::pair<long, long> n{0, 0};
+    for (const auto& w : worlds_) {
+      const auto b = w->solverBatches();
+      n.first += b.first;
+      n.second += b.second;
+    }
+    return n;
+  }
   Mode mode() const { return mode_; }
   int shards() const { return static_cast<int>(worlds_.size()); }
   // The shard character i lives in.

@@ -1,0 +1,69 @@
+// Probe: the fast constraint sweep (physics/solver.h) against Bullet's own, in one process, on one
+// simulation, switching between the two step by step. Both compute the same state, so the two sets
+// of steps simulate the same crowd; on a shared machine, whatever else runs slows both alike. Built
+// only on request (docs/parallel.md, "Where the physics time goes"):
+//
+//   ninja -C build/native gaitlab_solver_ab
+//   build/native/gaitlab_solver_ab LEGS CHARACTERS STEPS [SHARDS]
+//
+// Prints one JSON object: per sweep, the thread CPU time of a whole fixed step (serial: controller
+// and physics), median, 10th and 90th percentile, in ms and in µs per character, the ratio of the
+// medians, and the final state hash (the same as `gaitlab bench` with the same crowd, shards and
+// steps gives). The first 20 steps are left out.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <vector>
+
+#include "sim/simulation.h"
+
+namespace {
+
+double threadSeconds() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+double quantile(std::vector<double> x, double q) {
+  std::sort(x.begin(), x.end());
+  return x[static_cast<size_t>(q * (x.size() - 1))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::fprintf(stderr, "usage: gaitlab_solver_ab LEGS(2|4|mixed) CHARACTERS STEPS [SHARDS]\n");
+    return 2;
+  }
+  const std::string legs = argv[1];
+  const int characters = std::atoi(argv[2]), steps = std::atoi(argv[3]);
+  const int shards = argc > 4 ? std::atoi(argv[4]) : std::min(12, characters);
+  using gaitlab::sim::Crowd;
+  const Crowd crowd = legs == "2" ? Crowd::Bipeds : legs == "4" ? Crowd::Quadrupeds : Crowd::Mixed;
+  gaitlab::sim::Simulation sim(1, 1, shards);
+  sim.crowdScene(crowd, characters, 4.0);
+  std::vector<double> ms[2];  // [0] Bullet's sweep, [1] the fast one
+  for (int s = 0; s < steps; ++s) {
+    const bool fast = s % 2 == 1;
+    sim.setFastSolver(fast);
+    const double t0 = threadSeconds();
+    sim.step(1);
+    const double t1 = threadSeconds();
+    if (s >= 20) ms[fast].push_back((t1 - t0) * 1e3);
+  }
+  std::printf("{\"legs\": \"%s\", \"characters\": %d, \"steps\": %d, \"shards\": %d,", legs.c_str(),
+              characters, steps, shards);
+  const char* names[2] = {"bullet", "fast"};
+  for (int v = 0; v < 2; ++v) {
+    const double p50 = quantile(ms[v], 0.5);
+    std::printf(" \"%s\": {\"cpu_ms_p50\": %.3f, \"cpu_ms_p10\": %.3f, \"cpu_ms_p90\": %.3f, "
+                "\"us_per_character_p50\": %.1f},",
+                names[v], p50, quantile(ms[v], 0.1), quantile(ms[v], 0.9), p50 * 1e3 / characters);
+  }
+  std::printf(" \"ratio_p50\": %.3f, \"state_hash\": \"%s\"}\n",
+              quantile(ms[0], 0.5) / quantile(ms[1], 0.5), sim.stateHash().c_str());
+  return 0;
+}

@@ -90,7 +90,10 @@ try {
   await stepBy(warmup);
   // The camera follows the selection; seen from its left side (+x, characters walk along +z).
   const side = args.type === 'biped' ? [3.4, 0.35, 0] : [2.4, 0.25, 0];
-  await page.evaluate((offset) => window.gaitlab.viewFrom(offset), side);
+  const here = (await page.evaluate(() => window.gaitlab.characters())).find((c) => c.id === subject.id);
+  const to = [here.position[0], here.position[1], here.position[2]];
+  const from = to.map((v, i) => v + side[i]);
+  await page.evaluate(([a, b]) => window.gaitlab.view(a, b), [from, to]);
 
   const shots = [];
   for (let f = 0; f < frames; ++f) {

@@ -72,8 +72,6 @@ export interface GaitlabHook {
   step(count: number): void;
   pause(): void;
   resume(): void;
-  /** Camera at `offset` (metres) from the point it looks at, e.g. [3, 0.5, 0] for a side view. */
-  viewFrom(offset: Vec3): void;
   /** Screen position (CSS pixels) of character `id`'s root body, for tests that click it. */
   screenPosition(id: number): { x: number; y: number } | null;
 
@@ -236,7 +234,6 @@ const hook: GaitlabHook = {
   step: (count) => client?.send({ type: 'step', count }),
   pause: () => client?.send({ type: 'pause' }),
   resume: () => client?.send({ type: 'resume' }),
-  viewFrom: (offset) => stage?.viewFrom(new THREE.Vector3(...offset)),
   optimize: (form) => {
     if (!optimizer) return Promise.reject(new Error(optimizerMissing()));
     return optimizer.start(form);

@@ -141,12 +141,6 @@ export class Stage {
     this.camera.updateProjectionMatrix();
   }
 
-  /** Puts the camera at `offset` from what it looks at (e.g. a side view for a gait filmstrip). */
-  viewFrom(offset: THREE.Vector3): void {
-    this.camera.position.copy(this.controls.target).add(offset);
-    this.controls.update();
-  }
-
   /** Points the camera at a region: `center` seen from a distance that fits `radius`. */
   frame(center: THREE.Vector3, radius: number): void {
     const direction = this.camera.position.clone().sub(this.controls.target).normalize();

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "physics/fnv1a.h"
+
 namespace gaitlab::physics {
 
 namespace {
@@ -43,14 +45,6 @@ double latticeRandom(int64_t i, int64_t j, uint32_t seed) {
   h ^= h >> 16;
   return (h >> 8) * (1.0 / 16777216.0);
 }
-
-struct Fnv1a {
-  uint64_t h = 1469598103934665603ull;
-  void bytes(const void* p, size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
-  }
-};
 
 }  // namespace
 

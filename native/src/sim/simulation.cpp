@@ -14,6 +14,7 @@
 #include "gait/defaults.h"
 #include "gait/heading.h"
 #include "physics/convert.h"
+#include "physics/fnv1a.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::sim {
@@ -31,14 +32,6 @@ struct SceneRandom {
     s ^= s >> 17;
     s ^= s << 5;
     return (s >> 8) * (1.0 / 16777216.0);
-  }
-};
-
-struct Fnv1a {
-  uint64_t h = 1469598103934665603ull;
-  void bytes(const void* p, size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
   }
 };
 

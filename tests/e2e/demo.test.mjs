@@ -8,39 +8,23 @@
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import http from 'node:http';
-import os from 'node:os';
 import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
-import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
-import { startServer } from '../../scripts/serve.mjs';
+import { openRecordedPage, PAGE_TIMEOUT, repoDir, resultsDir, startBrowser } from './browser.mjs';
 
-const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const resultsDir = path.join(repoDir, 'test-results', 'e2e');
 const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
 
-// This machine is slow (2 shared cores, software WebGL): be generous.
-const PAGE_TIMEOUT = 120_000;
 const TEST_TIMEOUT = 240_000;
 
-/** @type {Awaited<ReturnType<typeof startServer>>} */
+/** @type {Awaited<ReturnType<typeof startBrowser>>} */
+let browser;
+/** @type {Awaited<ReturnType<typeof startBrowser>>['server']} */
 let server;
 /** @type {import('playwright-core').BrowserContext} */
 let context;
-let profileDir = '';
 
-/** Opens a page and records its uncaught errors and console errors. */
-async function openPage(url) {
-  const page = await context.newPage();
-  const problems = [];
-  page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
-  page.on('console', (message) => {
-    if (message.type() === 'error') problems.push(`console error: ${message.text()}`);
-  });
-  page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()} (${request.failure()?.errorText})`));
-  await page.goto(url, { waitUntil: 'load', timeout: PAGE_TIMEOUT });
-  return { page, problems };
-}
+const openPage = (url) => openRecordedPage(context, url);
 
 const stats = (page) => page.evaluate(() => window.gaitlab.stats());
 
@@ -124,40 +108,13 @@ function startStaticHost(root) {
 
 describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
   before(async () => {
-    for (const file of ['gaitlab.mjs', 'gaitlab.wasm', 'gaitlab.worker.js']) {
-      assert.ok(fs.existsSync(path.join(repoDir, 'build', 'wasm', file)), `build/wasm/${file} exists (run npm run build)`);
-    }
-    fs.mkdirSync(resultsDir, { recursive: true });
-    server = await startServer({ port: 0, quiet: true });
-    profileDir = fs.mkdtempSync(path.join(os.tmpdir(), 'gaitlab-chromium-'));
-    context = await chromium.launchPersistentContext(profileDir, {
-      executablePath,
-      headless: true,
-      viewport: { width: 1024, height: 640 },
-      args: [
-        '--no-sandbox',
-        '--disable-gpu',
-        '--enable-unsafe-swiftshader', // WebGL in software, without a GPU
-        '--disable-quic',
-        '--no-first-run',
-        '--disable-background-networking',
-        '--disable-component-update',
-        '--disable-sync',
-      ],
-    });
+    browser = await startBrowser({ viewport: { width: 1024, height: 640 } });
+    ({ server, context } = browser);
   });
 
-  // A test that failed half-way leaves its page open, simulating and rendering on this small
-  // machine's cores while the next test runs: close every page between tests.
-  afterEach(async () => {
-    for (const page of context?.pages() ?? []) await page.close().catch(() => {});
-  });
+  afterEach(() => browser?.closePages());
 
-  after(async () => {
-    await context?.close();
-    await server?.close();
-    if (profileDir) fs.rmSync(profileDir, { recursive: true, force: true });
-  });
+  after(() => browser?.close());
 
   it('runs a mixed crowd, draws it in a constant number of draw calls, pauses, steps and resets', { timeout: TEST_TIMEOUT }, async () => {
     const { page, problems } = await openPage(server.url);

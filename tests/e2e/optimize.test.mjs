@@ -9,34 +9,20 @@
 // Needs build/wasm (npm run build) and Chromium (CHROMIUM=/path overrides /usr/bin/chromium).
 // Nothing here depends on objective values: the presets are being retuned.
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
-import { startServer } from '../../scripts/serve.mjs';
+import { openRecordedPage, PAGE_TIMEOUT, resultsDir, startBrowser } from './browser.mjs';
 
-const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const resultsDir = path.join(repoDir, 'test-results', 'e2e');
-const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
-// This machine is slow (2 shared cores, software WebGL): be generous.
-const PAGE_TIMEOUT = 120_000;
 const RUN_TIMEOUT = 300_000;
 const TEST_TIMEOUT = 600_000;
 
+let browser;
 let server;
 let context;
-let profileDir = '';
 
+/** A recorded page (browser.mjs) once the demo has drawn its first frame without a problem. */
 async function openPage(url) {
-  const page = await context.newPage();
-  const problems = [];
-  page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
-  page.on('console', (message) => {
-    if (message.type() === 'error') problems.push(`console error: ${message.text()}`);
-  });
-  await page.goto(url, { waitUntil: 'load', timeout: PAGE_TIMEOUT });
+  const { page, problems } = await openRecordedPage(context, url);
   await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null, { timeout: PAGE_TIMEOUT, polling: 250 });
   assert.equal((await page.evaluate(() => window.gaitlab.stats())).error, null, 'no problem is shown on the page');
   return { page, problems };
@@ -99,30 +85,13 @@ function assertHistory(s, what) {
 
 describe('optimize panel', { timeout: TEST_TIMEOUT * 3 }, () => {
   before(async () => {
-    for (const file of ['gaitlab.mjs', 'gaitlab.wasm', 'gaitlab.worker.js']) {
-      assert.ok(fs.existsSync(path.join(repoDir, 'build', 'wasm', file)), `build/wasm/${file} exists (run npm run build)`);
-    }
-    fs.mkdirSync(resultsDir, { recursive: true });
-    server = await startServer({ port: 0, quiet: true });
-    profileDir = fs.mkdtempSync(path.join(os.tmpdir(), 'gaitlab-chromium-'));
-    context = await chromium.launchPersistentContext(profileDir, {
-      executablePath,
-      headless: true,
-      viewport: { width: 1280, height: 760 },
-      args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
-        '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-    });
+    browser = await startBrowser({ viewport: { width: 1280, height: 760 } });
+    ({ server, context } = browser);
   });
 
-  afterEach(async () => {
-    for (const page of context?.pages() ?? []) await page.close().catch(() => {});
-  });
+  afterEach(() => browser?.closePages());
 
-  after(async () => {
-    await context?.close();
-    await server?.close();
-    if (profileDir) fs.rmSync(profileDir, { recursive: true, force: true });
-  });
+  after(() => browser?.close());
 
   it('refuses bad input, runs a search beside the running crowd, stops keeping the best, applies and shares it', { timeout: TEST_TIMEOUT }, async (t) => {
     const { page, problems } = await openPage(`${server.url}?characters=2`);

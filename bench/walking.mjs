@@ -37,11 +37,12 @@ if (!existsSync(cli)) {
   process.exit(1);
 }
 
-const SPEEDS = [0.5, 1.0];
-const TURNS = [
-  { speed: 0.8, turn: 0.3 },
-  { speed: 0.5, turn: -0.3 },
-];
+// Goal speeds per character, one twice the other, and turn commands: a 0.49 m tall dog walks
+// slower than a 1.8 m human (similar Froude numbers, v²/(g·leg length) ≈ 0.05–0.15).
+const GOALS = {
+  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }] },
+  quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }] },
+};
 const PUSHES = [10, 15, 20, 25, 30, 40, 60, 80];  // N·s, lateral at the leg frame
 const PUSH_EVERY = 2.5;                   // s: 20 pushes in 52 s
 
@@ -82,6 +83,7 @@ const STARTS = [0, 0.02, -0.02, 0.05].flatMap((heading) => [0, 2, -2].map((push)
 const report = { machine: `${os.cpus()[0]?.model ?? 'unknown'}, ${os.cpus().length} cores`, seconds, characters: {} };
 const hasTerrain = terrainSupported();
 for (const character of characters) {
+  const { speeds: SPEEDS, turns: TURNS } = GOALS[character];
   process.stderr.write(`${character}: straight walks\n`);
   const straight = SPEEDS.map((speed) => walk(character, ['--speed', speed, '--seconds', seconds]));
   process.stderr.write(`${character}: turns\n`);
@@ -153,6 +155,7 @@ for (const character of characters) {
 if (paramsFile) report.params = paramsFile;
 const lines = [`# Walking benchmark (${seconds} s runs, ${report.machine}${paramsFile ? `, gait ${paramsFile}` : ''})`, ''];
 for (const [character, r] of Object.entries(report.characters)) {
+  const SPEEDS = GOALS[character].speeds;
   lines.push(`## ${character}: ${r.all_met ? 'every criterion met' : 'criteria not all met'}`, '', '| criterion | met | measured |', '|---|---|---|');
   for (const c of r.checks) lines.push(`| ${c.what} | ${c.ok ? 'yes' : '**no**'} | ${c.value} |`);
   lines.push('', `Pushes (lateral, 20 at random phases, walking at ${SPEEDS[0]} m/s): ` +

@@ -40,7 +40,6 @@ std::set<int> unusedSlots(Character c) {
   range(&p.legs[2], 2 * sizeof(LegParams));
   range(&p.gains.spineKp, sizeof(double));
   range(&p.gains.spineKd, sizeof(double));
-  range(&p.gains.spineTwistLoad, sizeof(double));
   return unused;
 }
 

@@ -68,11 +68,11 @@ TEST(StanceLeg, VelocityForceMovesTheLegFrameForwards) {
   EXPECT_GT(s.linearVelocity.z(), 0.1);
 }
 
-// Supported stance (controller.cpp, controller-notes §8): with all four feet planted and no
-// goal speed the quadruped must stand. When the stance hips carried the leg frames' whole
-// orientation torque (§3.1.3) the four legs and the body formed a parallelogram with no
-// horizontal stiffness, which drifted backwards and folded within 2–3 s.
-TEST(SupportedStance, TheQuadrupedStandsOnFourFeet) {
+// Whole-body stance (controller.cpp bodyStance, stance_forces.h): with all four feet planted and
+// no goal speed the quadruped must stand, and stay nearly still (F_v damps any drift). Before it,
+// four legs under hips that served only the leg frames' orientation (§3.1.3) formed a
+// parallelogram with no horizontal stiffness, which drifted backwards and folded within 2–3 s.
+TEST(BodyStance, TheQuadrupedStandsOnFourFeet) {
   Simulation sim(1, 1);
   sim.spawn(Kind::Quadruped, 0, 0, 0);
   gaitlab::gait::GaitParams p = sim.controller(0).params();
@@ -85,22 +85,24 @@ TEST(SupportedStance, TheQuadrupedStandsOnFourFeet) {
     ASSERT_FALSE(gaitlab::sim::hasFallen(sim, 0)) << "fell within " << second + 1 << " s";
   }
   const auto end = sim.character(0).segmentState(0);
-  EXPECT_LT((end.position - start.position).norm(), 0.05);
-  EXPECT_NEAR(end.position.y(), start.position.y(), 0.03);
+  EXPECT_LT((end.position - start.position).norm(), 0.2) << "crept over 10 s";
+  EXPECT_LT(end.linearVelocity.norm(), 0.05);
+  EXPECT_NEAR(end.position.y(), start.position.y(), 0.04);
 }
 
-// Without the support spring (supportGain 0) the same stance is an inverted pendulum that F_v
-// only damps: it must drift off. Guards the reason the spring exists.
-TEST(SupportedStance, WithoutTheSupportSpringTheStanceDrifts) {
+// The stance forces must carry the body towards the goal velocity: all four feet planted and a
+// goal of 0.3 m/s ahead, the body has to go forwards (the ground forces are chosen to give the
+// whole body F_v, eq. 3.6).
+TEST(BodyStance, VelocityForceMovesTheQuadrupedForwards) {
   Simulation sim(1, 1);
   sim.spawn(Kind::Quadruped, 0, 0, 0);
   gaitlab::gait::GaitParams p = sim.controller(0).params();
   for (auto& leg : p.legs) leg.dutyFactor = 1.0;
-  for (auto& f : p.legFrames) f.supportGain = 0;
   sim.controller(0).setParams(p);
-  sim.setGoal(0, {0.0, 0.0});
-  const auto start = sim.character(0).segmentState(0);
-  sim.step(120 * 4);
-  const auto end = sim.character(0).segmentState(0);
-  EXPECT_GT((end.position - start.position).norm(), 0.05);
+  sim.setGoal(0, {0.3, 0.0});
+  const double z0 = sim.character(0).segmentState(0).position.z();
+  sim.step(60);  // 0.5 s
+  const auto s = sim.character(0).segmentState(0);
+  EXPECT_GT(s.position.z() - z0, 0.02);
+  EXPECT_GT(s.linearVelocity.z(), 0.05);
 }

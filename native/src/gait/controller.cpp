@@ -8,6 +8,7 @@
 #include "gait/heading.h"
 #include "gait/ik.h"
 #include "gait/pd.h"
+#include "gait/stance_forces.h"
 #include "gait/virtual_force.h"
 
 namespace gaitlab::gait {
@@ -98,13 +99,15 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   if (std::abs(headingError) > 0.6) desiredHeading_ = wrapAngle(yaw + std::copysign(0.6, headingError));
 
   // Centre-of-mass velocity in m/s (defect 1: the original never divided by dt).
-  Vector3d comVelocity = Vector3d::Zero();
+  Vector3d comVelocity = Vector3d::Zero(), comPosition = Vector3d::Zero();
   double mass = 0;
   for (int i = 0; i < segments; ++i) {
     comVelocity += m_.segments[i].mass * s.segments[i].linearVelocity;
+    comPosition += m_.segments[i].mass * s.segments[i].position;
     mass += m_.segments[i].mass;
   }
   comVelocity /= mass;
+  comPosition /= mass;
   Vector3d velocityH = worldToHeading(yaw, comVelocity);
   velocityH.y() = 0;
   desiredVelocity_ = rampDesiredVelocity(desiredVelocity_, Vector3d(0, 0, goal_.speed),
@@ -141,117 +144,35 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
       swingLeg(li, s, yaw, velocityH, torques);
   }
 
-  // Spine twist from the stance loads (beyond the thesis, two leg frames only). A leg frame
-  // borne by one foot carries its share of the weight at that hip, off its centre: in a trot the
-  // front frame stands on (say) its left hip and the back on its right, and each needs a roll
-  // torque of load × hip offset (≈ 160 N × 9 cm ≈ 14 N·m) just to stay level. Left to its
-  // stance hip (§3.1.3) that torque must come back from the ground as a sideways push at the
-  // foot (a leg on a small foot cannot hold a torque), front and back pushing opposite ways:
-  // a yaw couple and sideways drift (controller-notes §8). Between the two frames the needs are
-  // equal and opposite, which a twist of the spine delivers internally. The spine joints get
-  // the differential part as a torque about the heading's forward axis; the frames' torque
-  // feedback below then counts it as already exerted.
-  // The same need is added to the torque each frame's stance legs must deliver (`net` below):
-  // the orientation PD alone would see it only as an error to grow into.
-  const Vector3d forward = headingForward(yaw);
-  double need[kMaxLegFrames] = {0, 0};  // roll torque each frame needs about `forward`
-  if (frames > 1 && stanceIn[0] > 0 && stanceIn[1] > 0 && params_.gains.spineTwistLoad > 0 &&
-      !m_.spine.empty()) {
-    for (size_t l = 0; l < m_.legs.size(); ++l) {
-      if (!player_.leg(static_cast<int>(l)).stance) continue;
-      const body::Leg& leg = m_.legs[l];
-      const Vector3d arm = jointPivot(leg.upper, s) - s.segments[leg.legFrame].position;
-      need[legFrameIndex(leg)] -= params_.gains.spineTwistLoad *
-                                  arm.cross(Vector3d(0, stanceLoad, 0)).dot(forward);
-    }
-    // A torque t on a spine joint acts +t on its child and −t on its parent: along the chain
-    // front → links → back the links cancel, the front frame gets −t and the back +t.
-    const double twist = 0.5 * (need[0] - need[1]);
-    for (int link : m_.spine) torques[link] -= twist * forward;
-    torques[m_.legFrames[1]] -= twist * forward;
+  if (frames > 1) {
+    bodyStance(s, yaw, comPosition, comVelocity, phase, torques);
+    finishTorques(s, torques);
+    return;
   }
 
-  // Leg-frame torque feedback (§3.1.3, eq. 3.4–3.5): the torque each leg frame should feel, a PD
-  // towards its orientation graphs in the heading frame, less what the swing hips and the spine
-  // already exert on it: `net` is what its stance legs must add.
-  Vector3d net[kMaxLegFrames];
-  for (int f = 0; f < frames; ++f) {
-    const int lf = m_.legFrames[f];
-    const LegFrameParams& p = params_.legFrames[f];
-    const BodyState& frame = s.segments[lf];
-    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
-                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
-                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
-    net[f] = orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
-                           frame.angularVelocity);
-    net[f] += need[f] * forward;
-    for (int i = 0; i < segments; ++i) {
-      if (m_.segments[i].parent != lf) continue;
-      bool stanceHip = false;
-      for (size_t l = 0; l < m_.legs.size(); ++l)
-        if (m_.legs[l].upper == i && player_.leg(static_cast<int>(l)).stance) stanceHip = true;
-      if (!stanceHip) net[f] += torques[i];  // the joint's reaction on the leg frame is −torques[i]
-    }
-    if (m_.segments[lf].parent >= 0) net[f] -= torques[lf];
-  }
-
-  // Supported stance (beyond the thesis, for more than one leg frame). When both leg frames of
-  // a quadruped have feet down, the body is a table: its pitch is fixed by how high the front
-  // and the back stand, not by the hips. The thesis (§3.1.3) delivers the whole leg-frame
-  // torque through the stance hips; with small feet that cannot push back (limitToSupport) the
-  // stance legs then have no horizontal stiffness: four legs and the body form a parallelogram
-  // that drifts and folds (controller-notes §8). Here the pitch torque the two leg frames need
-  // together is asked of the supports instead, as vertical forces of opposite sign at the front
-  // and at the back (moment T about the heading x axis from ∓T/L at ±L/2), and every stance
-  // joint, hip included, takes the moment of its leg's force about the sole, (p_j − p_sole) × F:
-  // what a leg standing on a point must supply to push with F. What is left of the pitch, equal
-  // and opposite at the two ends, bends the spine; the stance hips still serve it (front and
-  // back feet then push the ground in opposite directions, which planted feet hold). Active only
-  // with stance legs in two leg frames: the biped's single leg frame keeps §3.1.3 as it is.
-  const bool table = frames > 1 && stanceIn[0] > 0 && stanceIn[1] > 0;
-  const Vector3d pitchAxis = headingToWorld(yaw, Vector3d::UnitX());  // also "to the left"
-  const Vector3d rollAxis = headingForward(yaw);
-  Vector3d pitchForce[kMaxLegFrames] = {Vector3d::Zero(), Vector3d::Zero()};
-  if (table) {
-    const Vector3d span = s.segments[m_.legFrames[0]].position - s.segments[m_.legFrames[1]].position;
-    const double length = std::max(0.1, span.dot(rollAxis));
-    const double pitchTorque = (net[0] + net[1]).dot(pitchAxis);
-    pitchForce[0] = Vector3d(0, -pitchTorque / length, 0);
-    pitchForce[1] = Vector3d(0, pitchTorque / length, 0);
-    for (int f = 0; f < frames; ++f) net[f] -= 0.5 * pitchTorque * pitchAxis;
-  }
-  // Likewise a leg frame standing on a left and a right foot (in a supported stance) holds its
-  // roll by how high each side stands: roll torque T from vertical forces ±T/(a_l − a_r) at the
-  // feet's lateral offsets a; the stance hips keep their virtual-force share about that axis.
-  bool rollHeld[kMaxLegFrames] = {false, false};
-  double rollForce[kMaxLegFrames] = {0, 0};  // N on each left foot; the right ones get −
-  for (int f = 0; table && f < frames; ++f) {
-    double left = 0, right = 0;
-    int nl = 0, nr = 0;
-    for (size_t l = 0; l < m_.legs.size(); ++l) {
-      if (legFrameIndex(m_.legs[l]) != f || !player_.leg(static_cast<int>(l)).stance) continue;
-      const double a =
-          (s.segments[m_.legs[l].foot].position - s.segments[m_.legFrames[f]].position).dot(pitchAxis);
-      if (geometry_[l].side > 0) {
-        left += a;
-        ++nl;
-      } else {
-        right += a;
-        ++nr;
-      }
-    }
-    if (nl == 0 || nr == 0) continue;
-    rollHeld[f] = true;
-    rollForce[f] = net[f].dot(rollAxis) / std::max(0.05, left / nl - right / nr) / nl;
-    net[f] -= net[f].dot(rollAxis) * rollAxis;
-  }
-
+  // One leg frame (the biped): the thesis's scheme. Leg-frame torque feedback (§3.1.3,
+  // eq. 3.4–3.5): the torque the leg frame should feel, a PD towards its orientation graphs in
+  // the heading frame, less what the swing hips already exert on it: `net` is what its stance
+  // legs must add, shared among their hips.
   for (int f = 0; f < frames; ++f) {
     const int lf = m_.legFrames[f];
     const LegFrameParams& p = params_.legFrames[f];
     const BodyState& frame = s.segments[lf];
     const int stance = stanceIn[f];
     if (stance == 0) continue;
+    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
+                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
+                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
+    Vector3d net = orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
+                                 frame.angularVelocity);
+    for (int i = 0; i < segments; ++i) {
+      if (m_.segments[i].parent != lf) continue;
+      bool stanceHip = false;
+      for (size_t l = 0; l < m_.legs.size(); ++l)
+        if (m_.legs[l].upper == i && player_.leg(static_cast<int>(l)).stance) stanceHip = true;
+      if (!stanceHip) net += torques[i];  // the joint's reaction on the leg frame is −torques[i]
+    }
+    if (m_.segments[lf].parent >= 0) net -= torques[lf];
 
     // Stance forces on the leg frame (§3.1.4): height F_h, velocity F_v (eq. 3.6); F_D per leg.
     const double ground = s.ground.at(frame.position.x(), frame.position.z());
@@ -259,41 +180,23 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     const Vector3d fh(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
     const Vector3d fv = velocityForce(p.velocityGain, headingToWorld(yaw, desiredVelocity_), comVelocity);
     const PhaseForceCoefficients c{p.fd[0], p.fd[1], p.fd[2], p.fd[3]};
-    // Supported stance: a quadruped's stance legs, hips free in pitch, are inverted pendulums
-    // (gravity pushes the body away from over its feet at ≈ m·g/h, −650 N/m here) and F_v only
-    // damps that. A spring keeps the hips over the centre of the stance feet: along the heading
-    // always, sideways only when both sides stand (with one foot the leg frame is not meant to
-    // stand over it).
-    Vector3d fs = Vector3d::Zero();
-    if (table && p.supportGain > 0) {
-      Vector3d off = Vector3d::Zero();
-      for (size_t l = 0; l < m_.legs.size(); ++l)
-        if (m_.legs[l].legFrame == lf && player_.leg(static_cast<int>(l)).stance)
-          off += jointPivot(m_.legs[l].foot, s) - jointPivot(m_.legs[l].upper, s);
-      off /= stance;
-      fs = p.supportGain * off.dot(rollAxis) * rollAxis;
-      if (rollHeld[f]) fs += p.supportGain * off.dot(pitchAxis) * pitchAxis;
-    }
 
-    // The stance hips deliver the leg frame's net torque (eq. 3.5), except for the components
-    // held by the supports, where they keep their share of the virtual forces.
-    const Vector3d perHip = -net[f] / stance;
+    // The stance hips deliver the leg frame's net torque (eq. 3.5).
+    const Vector3d perHip = -net / stance;
     for (size_t l = 0; l < m_.legs.size(); ++l) {
       const body::Leg& leg = m_.legs[l];
       const int li = static_cast<int>(l);
       if (leg.legFrame != lf || !player_.leg(li).stance) continue;
       const double d = footProgress(frame.position, s.segments[leg.foot].position, yaw);
-      const Vector3d support = pitchForce[f] / stance + Vector3d(0, geometry_[l].side * rollForce[f], 0);
-      stanceLeg(li, s, yaw, (fh + fv + fs) / stance + support + phaseForce(c, d, yaw), stanceLoad, table,
-                torques);
-      Vector3d& hip = torques[leg.upper];
-      Vector3d own = Vector3d::Zero();
-      if (table) own += hip.dot(pitchAxis) * pitchAxis;
-      if (rollHeld[f]) own += hip.dot(rollAxis) * rollAxis;
-      hip = perHip + own;
+      stanceLeg(li, s, yaw, (fh + fv) / stance + phaseForce(c, d, yaw), stanceLoad, false, torques);
+      torques[leg.upper] = perHip;
     }
   }
 
+  finishTorques(s, torques);
+}
+
+void Controller::finishTorques(const CharacterState& s, Vector3d* torques) const {
   // Twist scaling on swing hips only: a stance leg cannot spin about its own axis (knee hinge,
   // ankle and the foot on the ground lock it), and its hip twist is what turns the leg frame.
   for (size_t l = 0; l < m_.legs.size(); ++l) {
@@ -303,7 +206,59 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     Vector3d& t = torques[leg.upper];
     t -= (1.0 - params_.gains.hipTwistScale) * t.dot(axis) * axis;
   }
+  const int segments = static_cast<int>(m_.segments.size());
   for (int i = 0; i < segments; ++i) torques[i] = clampNorm(torques[i], params_.gains.maxTorque);
+}
+
+void Controller::bodyStance(const CharacterState& s, double yaw, const Vector3d& com,
+                            const Vector3d& comVelocity, double phase, Vector3d* torques) {
+  // Whole-body stance (beyond the thesis; stance_forces.h): the body's wanted force and torque
+  // from the leg frames' own PDs (§3.1.3–3.1.4), then one ground force per stance foot.
+  const int segments = static_cast<int>(m_.segments.size());
+  const int frames = static_cast<int>(m_.legFrames.size());
+  Vector3d force = -weight_ / 9.81 * gravity_;  // gravity compensation of the whole body
+  Vector3d torque = Vector3d::Zero();
+  double kv = 0;
+  for (int f = 0; f < frames; ++f) {
+    const int lf = m_.legFrames[f];
+    const LegFrameParams& p = params_.legFrames[f];
+    const BodyState& frame = s.segments[lf];
+    // Orientation PD towards the graphs in the heading frame (eq. 3.4).
+    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
+                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
+                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
+    torque += orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
+                            frame.angularVelocity);
+    // Height F_h of this leg frame, acting where the leg frame is: unequal heights pitch the body.
+    const double ground = s.ground.at(frame.position.x(), frame.position.z());
+    const double height = ground + m_.segments[lf].center.y() + p.heightOffset.eval(phase);
+    const Vector3d fh(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
+    force += fh;
+    torque += (frame.position - com).cross(fh);
+    kv += p.velocityGain;
+    // What the swing hips exert on this leg frame (their reaction, −τ) the stance must make up.
+    for (int i = 0; i < segments; ++i) {
+      if (m_.segments[i].parent != lf) continue;
+      for (size_t l = 0; l < m_.legs.size(); ++l)
+        if (m_.legs[l].upper == i && !player_.leg(static_cast<int>(l)).stance) torque += torques[i];
+    }
+  }
+  // F_v (eq. 3.6) on the whole body.
+  force += velocityForce(kv, headingToWorld(yaw, desiredVelocity_), comVelocity);
+
+  Vector3d points[kMaxStanceFeet], forces[kMaxStanceFeet];
+  int legOf[kMaxStanceFeet];
+  int count = 0;
+  for (size_t l = 0; l < m_.legs.size() && count < kMaxStanceFeet; ++l) {
+    if (!player_.leg(static_cast<int>(l)).stance) continue;
+    points[count] = jointPivot(m_.legs[l].foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
+    legOf[count++] = static_cast<int>(l);
+  }
+  if (count == 0) return;
+  StanceForceSettings settings;
+  distributeStanceForces(com, force, torque, points, count, settings, forces);
+  for (int i = 0; i < count; ++i)
+    stanceLeg(legOf[i], s, yaw, forces[i], std::max(0.0, forces[i].y()), true, torques);
 }
 
 void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vector3d& force,
@@ -318,9 +273,9 @@ void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vec
   // leg would, differs by the constant moment (p_sole − p_lf) × F, which only the stance hip
   // could supply, and the stance hip is spent on the leg frame's orientation (below): the
   // knee and ankle were left pushing the leg frame backwards when it was asked to go forwards.
-  // In a supported stance (update(): both leg frames have feet down) the hip keeps its share,
-  // so the force is taken at the sole: the moment (p_sole − p_lf) × F is then balanced by the
-  // other leg frame's supports instead of the ankle, which cannot hold it.
+  // In the whole-body stance (bodyStance, more than one leg frame) F is this foot's ground
+  // force, chosen with the other feet's so that together they balance the body: it is taken
+  // at the sole, and the hip delivers its moment like every other joint.
   const DofChain chain = legChain(l, s);
   const Vector3d at = supported ? jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0)
                                 : s.segments[leg.legFrame].position;

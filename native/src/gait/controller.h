@@ -68,6 +68,7 @@ class Controller {
   };
 
   // `load`: the weight this stance leg carries (N), for the support limit of its ankle.
+  // `supported`: the force is this foot's ground force in the whole-body stance (bodyStance).
   void stanceLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& force,
                  double load, bool supported, Eigen::Vector3d* torques);
   void swingLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& velocity,
@@ -80,6 +81,11 @@ class Controller {
               Eigen::Vector3d* torques);
   void limitToSupport(int leg, const CharacterState& s, double load, Eigen::Vector3d* torques) const;
   void spine(const CharacterState& s, Eigen::Vector3d* torques);
+  // Characters with more than one leg frame: stance forces for the whole body (stance_forces.h).
+  void bodyStance(const CharacterState& s, double yaw, const Eigen::Vector3d& com,
+                  const Eigen::Vector3d& comVelocity, double phase, Eigen::Vector3d* torques);
+  // Swing-hip twist scaling and the torque limit, last in every update.
+  void finishTorques(const CharacterState& s, Eigen::Vector3d* torques) const;
 
   const body::Morphology& m_;
   GaitParams params_;

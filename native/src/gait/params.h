@@ -18,9 +18,6 @@ struct LegFrameParams {
   MotionGraph footTrackingGain, stepHeight, swingEase;
   double heightKp = 0, heightKd = 0;  // F_h PD gains (N/m, N·s/m)
   double velocityGain = 0;            // K_v of F_v = K_v (v_d − v) (eq. 3.6), N·s/m
-  // Supported stance (both leg frames with feet down, controller.cpp): horizontal force per
-  // metre that the leg frame's hips stand off the centre of its stance feet, N/m.
-  double supportGain = 0;
   double fd[4] = {0, 0, 0, 0};        // c0..c3 of F_D(D) (eq. 3.8)
   double footPlacementScale = 0;      // s of P1 = P_lf + (v − v_d)·s (§3.1.6), seconds
   double footPlacementLead = 0;       // s: the nominal offset grows by v_d × this
@@ -45,10 +42,6 @@ struct JointGains {
   double ankleKp = 0, ankleKd = 0;          // swing foot, world frame (§3.1.6)
   double stanceAnkleKp = 0, stanceAnkleKd = 0;  // stance foot relative to its shin (§3.1.7)
   double spineKp = 0, spineKd = 0;
-  // Supported stance (controller.cpp, beyond the thesis): share of the roll moment that the
-  // stance legs' weight, borne off-centre, puts on each leg frame, handed between the leg frames
-  // as a spine twist torque (a trot's diagonal: front and back need opposite roll). 0 = none.
-  double spineTwistLoad = 0;
   double stanceKneeFlexion = 0;  // rad, the stance knee's PD target
   // Share of the hip torque kept about the thigh's long axis. A limb's inertia about its own
   // axis is ~20× smaller than about the hip, so at 120 Hz the gains that hold the thigh's swing

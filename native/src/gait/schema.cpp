@@ -107,10 +107,6 @@ Table build(Character c) {
     // fastest mode less): k_d = 5 alternated ±45 N·m every step, k_d ≤ 1 is smooth (§8).
     scalar("gains.spineKd", kJointGains, {0, 1.5}, "N·m·s/rad", "spine PD derivative gain",
            g.spineKd);
-    scalar("gains.spineTwistLoad", kJointGains, {0, 1.5}, "1",
-           "share of the stance feet's off-centre load moment carried as spine twist between the "
-           "leg frames (a trot's diagonal; beyond the thesis)",
-           g.spineTwistLoad);
   }
   scalar("gains.stanceKneeFlexion", kStance, {0, 1.0}, "rad", "knee bend the stance knee's PD holds",
          g.stanceKneeFlexion);
@@ -145,10 +141,6 @@ Table build(Character c) {
            "F_h derivative gain", f.heightKd);
     scalar(n + "velocityGain", kStance, {0, 400}, "N·s/m",
            "K_v of the stance velocity force F_v = K_v (v_d − v) (eq. 3.6)", f.velocityGain);
-    scalar(n + "supportGain", kStance, {0, 2000}, "N/m",
-           "with feet down under both leg frames: horizontal force per metre the hips stand off "
-           "their stance feet (a quadruped's legs are inverted pendulums; beyond the thesis)",
-           f.supportGain);
     scalar(n + "fdC0", kStance, {-200, 200}, "N", "c0 of F_D(D): vertical force at D = 0 (eq. 3.8)",
            f.fd[0]);
     scalar(n + "fdC1", kStance, {-1000, 1000}, "N/m", "c1 of F_D(D): vertical force per metre of D (eq. 3.8)",

@@ -160,11 +160,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     const BodyState& frame = s.segments[lf];
     const int stance = stanceIn[f];
     if (stance == 0) continue;
-    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
-                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
-                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
-    Vector3d net = orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
-                                 frame.angularVelocity);
+    Vector3d net = frameOrientationPd(f, s, phase);
     for (int i = 0; i < segments; ++i) {
       if (m_.segments[i].parent != lf) continue;
       bool stanceHip = false;
@@ -175,9 +171,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     if (m_.segments[lf].parent >= 0) net -= torques[lf];
 
     // Stance forces on the leg frame (§3.1.4): height F_h, velocity F_v (eq. 3.6); F_D per leg.
-    const double ground = s.ground.at(frame.position.x(), frame.position.z());
-    const double height = ground + m_.segments[lf].center.y() + p.heightOffset.eval(phase);
-    const Vector3d fh(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
+    const Vector3d fh = heightForce(f, s, phase);
     const Vector3d fv = velocityForce(p.velocityGain, headingToWorld(yaw, desiredVelocity_), comVelocity);
     const PhaseForceCoefficients c{p.fd[0], p.fd[1], p.fd[2], p.fd[3]};
 
@@ -194,6 +188,28 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   }
 
   finishTorques(s, torques);
+}
+
+Vector3d Controller::frameOrientationPd(int f, const CharacterState& s, double phase) const {
+  // Eq. 3.4: PD towards the leg frame's orientation graphs, in the heading frame.
+  const LegFrameParams& p = params_.legFrames[f];
+  const BodyState& frame = s.segments[m_.legFrames[f]];
+  const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
+                              Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
+                              Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
+  return orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
+                       frame.angularVelocity);
+}
+
+Vector3d Controller::heightForce(int f, const CharacterState& s, double phase) const {
+  // F_h (§3.1.4): PD towards the leg frame's standing height plus its height graph, above the
+  // ground under it (defect 7: ray cast, not a constant).
+  const int lf = m_.legFrames[f];
+  const LegFrameParams& p = params_.legFrames[f];
+  const BodyState& frame = s.segments[lf];
+  const double ground = s.ground.at(frame.position.x(), frame.position.z());
+  const double height = ground + m_.segments[lf].center.y() + p.heightOffset.eval(phase);
+  return Vector3d(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
 }
 
 void Controller::finishTorques(const CharacterState& s, Vector3d* torques) const {
@@ -223,16 +239,9 @@ void Controller::bodyStance(const CharacterState& s, double yaw, const Vector3d&
     const int lf = m_.legFrames[f];
     const LegFrameParams& p = params_.legFrames[f];
     const BodyState& frame = s.segments[lf];
-    // Orientation PD towards the graphs in the heading frame (eq. 3.4).
-    const Quaterniond desired = headingQuat(desiredHeading_ + p.yaw.eval(phase)) *
-                                Quaterniond(Eigen::AngleAxisd(p.pitch.eval(phase), Vector3d::UnitX())) *
-                                Quaterniond(Eigen::AngleAxisd(p.roll.eval(phase), Vector3d::UnitZ()));
-    torque += orientationPd(p.orientationKp, p.orientationKd, frame.orientation, desired,
-                            frame.angularVelocity);
+    torque += frameOrientationPd(f, s, phase);
     // Height F_h of this leg frame, acting where the leg frame is: unequal heights pitch the body.
-    const double ground = s.ground.at(frame.position.x(), frame.position.z());
-    const double height = ground + m_.segments[lf].center.y() + p.heightOffset.eval(phase);
-    const Vector3d fh(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
+    const Vector3d fh = heightForce(f, s, phase);
     force += fh;
     torque += (frame.position - com).cross(fh);
     kv += p.velocityGain;

@@ -95,6 +95,28 @@ struct BadFile {
   std::string message;
 };
 
+TEST(GaitFile, AVersion1FileIsMigrated) {
+  // Schema 2 dropped the support gain and added gains.swingTargetRate, whose 0 is version 1's
+  // behaviour: a version-1 file loads with everything else unchanged.
+  json v2 = json::parse(presetText(Character::Quadruped));
+  json v1 = v2;
+  v1["version"] = 1;
+  v1["params"].erase("gains.swingTargetRate");
+  v1["params"]["front.supportGain"] = 1500.0;
+  v1["params"]["back.supportGain"] = 900.0;
+  GaitFile migrated, current;
+  ASSERT_FALSE(parseGaitFile(v1.dump(), Character::Quadruped, &migrated));
+  v2["params"]["gains.swingTargetRate"] = 0.0;
+  ASSERT_FALSE(parseGaitFile(v2.dump(), Character::Quadruped, &current));
+  EXPECT_TRUE(sameBits(migrated.params, current.params));
+  EXPECT_EQ(migrated.params.gains.swingTargetRate, 0.0);
+  // The migration is for version 1 only: the support gain is unknown in a version-2 file.
+  v2["params"]["front.supportGain"] = 1500.0;
+  const auto error = parseGaitFile(v2.dump(), Character::Quadruped, &current);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->field, "front.supportGain");
+}
+
 TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
   const json preset = json::parse(presetText(Character::Biped), nullptr, false);
   ASSERT_FALSE(preset.is_discarded());
@@ -111,7 +133,8 @@ TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
       {"unknown top-level field", with([](json& j) { j["colour"] = "red"; }), "colour", "unknown field"},
       {"wrong format", with([](json& j) { j["format"] = "gaitlab-scene"; }), "format", "expected \"gaitlab-gait\""},
       {"missing format", with([](json& j) { j.erase("format"); }), "format", "missing"},
-      {"wrong version", with([](json& j) { j["version"] = 2; }), "version", "expected 1"},
+      {"newer version", with([](json& j) { j["version"] = kGaitFormatVersion + 1; }), "version", "expected 1 to"},
+      {"version 0", with([](json& j) { j["version"] = 0; }), "version", "expected 1 to"},
       {"version as a string", with([](json& j) { j["version"] = "1"; }), "version", "expected 1"},
       {"unknown character", with([](json& j) { j["character"] = "horse"; }), "character", "\"horse\""},
       {"other character", with([](json& j) { j["character"] = "quadruped"; }), "character",

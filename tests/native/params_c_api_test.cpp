@@ -29,7 +29,7 @@ std::string bipedFileWithPeriod(double period) {
 TEST(ParamsCApi, SchemaAndPresetsAreJson) {
   const json schema = parse(gl_schema_json());
   ASSERT_FALSE(schema.is_discarded());
-  EXPECT_EQ(schema["version"], 1);
+  EXPECT_EQ(schema["version"], gaitlab::gait::kSchemaVersion);
   EXPECT_GT(schema["characters"]["biped"].size(), 10u);
   EXPECT_GT(schema["characters"]["quadruped"].size(), schema["characters"]["biped"].size());
   EXPECT_EQ(parse(gl_preset_json(GL_KIND_BIPED))["character"], "biped");

@@ -3,6 +3,7 @@
 import { describe, expect, it } from 'vitest';
 import {
   GaitError,
+  MIGRATIONS,
   parseGait,
   presetGait,
   sameParams,
@@ -201,6 +202,19 @@ describe('gait links', () => {
     expect(migrated.params).toEqual({ ...others, 'gains.hipKp': 450 });
     // Without a migration for that version, the link is refused rather than misread.
     expect((await decodeGaitHash(hash, newSchema, {}).catch((e: GaitError) => e.problem))).toBe('unknown-version');
+  });
+
+  it('migrate a schema-1 gait to schema 2: the support gain goes, the swing target rate is 0', () => {
+    const schema2 = { ...schema, version: 2 };
+    schema2.characters = {
+      ...schema.characters,
+      biped: [...schema.characters.biped, { name: 'gains.swingTargetRate', group: 'Joint gains', min: 0, max: 1, default: 0, unit: '1', description: '', knots: 1 }],
+    };
+    const { params } = presetGait(schema, 'biped');
+    const old = { format: 'gaitlab-gait', version: 1, character: 'biped', params: { ...params, 'legFrame.supportGain': 800 } };
+    const migrated = parseGait(old, schema2, MIGRATIONS);
+    expect(migrated.version).toBe(2);
+    expect(migrated.params).toEqual({ ...params, 'gains.swingTargetRate': 0 });
   });
 
   it('survive random garbage without throwing anything but GaitError', async () => {

@@ -32,6 +32,10 @@ Quaterniond limbOrientation(const Vector3d& down, const Vector3d& forward) {
   return Quaterniond(r);
 }
 
+// Bound of a swing target's rate (rad/s): a step in the target (a new strike point) is not a
+// velocity to follow.
+constexpr double kMaxSwingRate = 20.0;
+
 Vector3d clampNorm(const Vector3d& v, double max) {
   const double n = v.norm();
   return n > max ? v * (max / n) : v;
@@ -65,6 +69,7 @@ Controller::Controller(const body::Morphology& morphology, const GaitParams& par
     geometry_.push_back(g);
   }
   liftOff_.assign(m_.legs.size(), Vector3d::Zero());
+  swingTargets_.assign(m_.legs.size(), SwingTargets());
   weight_ = m_.totalMass() * -gravity_.y();
   setParams(params);
 }
@@ -88,6 +93,7 @@ void Controller::setParams(const GaitParams& params) {
 void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   const int segments = static_cast<int>(m_.segments.size());
   for (int i = 0; i < segments; ++i) torques[i].setZero();
+  dt_ = dt;
 
   // Heading frame (correction of defect 7: nothing in world axes) and the goal (steering).
   const BodyState& root = s.segments[m_.legFrames[0]];
@@ -138,6 +144,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     const int li = static_cast<int>(l);
     if (player_.leg(li).events & kLiftOff)
       liftOff_[l] = jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
+    if (player_.leg(li).events & kLiftOff) swingTargets_[l].valid = false;
     if (player_.leg(li).stance)
       ++stanceIn[legFrameIndex(leg)];
     else
@@ -339,9 +346,25 @@ void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vect
   const Vector3d forward = headingForward(yaw);
   const TwoLinkIk ik = solveTwoLinkIk(hip, ankleTarget, g.thigh, g.shin, forward * leg.kneeBend);
   const Quaterniond thighWanted = limbOrientation(ik.thighDir, forward);
+  // The PDs may track the trajectory's velocity as well as its position (beyond the thesis,
+  // swingTargetRate): with only the position, a PD lags a moving target by k_d/k_p (80 ms at
+  // the quadruped's knee) and the foot struck late on every step (controller-notes §11). The
+  // targets' rates are their change since the last step. Rate 0 damps the thigh relative to
+  // the leg frame, as before.
+  SwingTargets& last = swingTargets_[l];
+  Vector3d thighRate = frame.angularVelocity;
+  double kneeRate = 0.0;
+  const double share = k.swingTargetRate;
+  if (last.valid && dt_ > 0 && share > 0) {
+    const Eigen::AngleAxisd turn(thighWanted * last.thigh.conjugate());
+    const Vector3d rate = clampNorm(turn.axis() * wrapAngle(turn.angle()) / dt_, kMaxSwingRate);
+    thighRate += share * (rate - thighRate);
+    kneeRate = share * std::clamp((ik.kneeFlexion - last.knee) / dt_, -kMaxSwingRate, kMaxSwingRate);
+  }
+  last = {thighWanted, ik.kneeFlexion, true};
   torques[leg.upper] += orientationPd(k.hipKp, k.hipKd, thigh.orientation, thighWanted,
-                                      thigh.angularVelocity, frame.angularVelocity);
-  kneePd(l, s, ik.kneeFlexion, torques);
+                                      thigh.angularVelocity, thighRate);
+  kneePd(l, s, ik.kneeFlexion, torques, kneeRate);
 
   // Swing virtual force F_sw with gain k_ft(ϕ), K_d = 0.1 K_p (§3.1.4; defect 2), and gravity
   // compensation of the swing leg's segments (§3.1.5), both over the chain leg frame → ankle.
@@ -389,7 +412,8 @@ DofChain Controller::legChain(int l, const CharacterState& s) const {
   return chain;
 }
 
-void Controller::kneePd(int l, const CharacterState& s, double flexionWanted, Vector3d* torques) {
+void Controller::kneePd(int l, const CharacterState& s, double flexionWanted, Vector3d* torques,
+                        double rateWanted) {
   // Knee flexion is the shin's rotation about the thigh's x axis, signed so that bending the
   // way the knee points is positive (kneeBend), §3.1.4 and §3.1.7.
   const body::Leg& leg = m_.legs[l];
@@ -400,7 +424,7 @@ void Controller::kneePd(int l, const CharacterState& s, double flexionWanted, Ve
       leg.kneeBend * twistAngle(thigh.orientation.conjugate() * shin.orientation, Vector3d::UnitX());
   const double rate = leg.kneeBend * (shin.angularVelocity - thigh.angularVelocity).dot(axis);
   const JointGains& k = params_.gains;
-  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, flexionWanted - flexion, -rate) * axis;
+  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, flexionWanted - flexion, rateWanted - rate) * axis;
 }
 
 void Controller::footPd(int l, const CharacterState& s, double yaw, double pitch, double kp,

@@ -76,7 +76,8 @@ class Controller {
   int legFrameIndex(const body::Leg& leg) const;  // 0 front/only, 1 back
   Eigen::Vector3d jointPivot(int segment, const CharacterState& s) const;  // world, now
   DofChain legChain(int leg, const CharacterState& s) const;
-  void kneePd(int leg, const CharacterState& s, double flexionWanted, Eigen::Vector3d* torques);
+  void kneePd(int leg, const CharacterState& s, double flexionWanted, Eigen::Vector3d* torques,
+              double rateWanted = 0.0);
   void footPd(int leg, const CharacterState& s, double yaw, double pitch, double kp, double kd,
               Eigen::Vector3d* torques);
   void limitToSupport(int leg, const CharacterState& s, double load, Eigen::Vector3d* torques) const;
@@ -97,6 +98,14 @@ class Controller {
   std::vector<LegGeometry> geometry_;
   std::vector<Eigen::Vector3d> liftOff_;  // per leg: foot position at lift-off (P0)
   bool started_ = false;                  // liftOff_ set from the feet on the first update
+  // Per swing leg: last step's IK targets, to track the swing trajectory's velocity too.
+  struct SwingTargets {
+    Eigen::Quaterniond thigh = Eigen::Quaterniond::Identity();
+    double knee = 0;
+    bool valid = false;  // false on the first step of a swing
+  };
+  std::vector<SwingTargets> swingTargets_;
+  double dt_ = 0;
   double desiredHeading_;
   Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gravity_{0, -9.81, 0};

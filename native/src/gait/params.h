@@ -47,6 +47,10 @@ struct JointGains {
   // axis is ~20× smaller than about the hip, so at 120 Hz the gains that hold the thigh's swing
   // would make its twist unstable (explicit PD: k_d·dt/I must stay below ~1).
   double hipTwistScale = 1;
+  // Share of the swing IK targets' rate that the swing hip and knee PDs track (0: the thesis's
+  // PD towards a position only, which lags a moving target by k_d/k_p; 1: the target's velocity
+  // too). Controller::swingLeg.
+  double swingTargetRate = 0;
   double maxTorque = 0;          // N·m, clamp per joint
 };
 

@@ -55,6 +55,24 @@ std::optional<std::string> checkNumber(const json& v, const ParamSpec& s, double
   return std::nullopt;
 }
 
+// Brings the parameters of a file made against schema `version` up to kSchemaVersion, one
+// version at a time; the same steps as the web page's MIGRATIONS (web/src/share/gait-file.ts).
+void migrateParams(int version, json* params) {
+  if (version < 2) {
+    // 2: the quadruped's whole-body stance replaced the per-leg-frame support gain, and the swing
+    // PDs may follow their targets' velocity (gains.swingTargetRate; 0 is the old behaviour).
+    for (auto it = params->begin(); it != params->end();) {
+      const std::string& key = it.key();
+      const std::string suffix = ".supportGain";
+      if (key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+        it = params->erase(it);
+      else
+        ++it;
+    }
+    if (!params->contains("gains.swingTargetRate")) (*params)["gains.swingTargetRate"] = 0.0;
+  }
+}
+
 }  // namespace
 
 std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<Character> expected,
@@ -74,9 +92,11 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   if (doc["format"] != kGaitFormat)
     return ParamsError{"format", "expected \"" + std::string(kGaitFormat) + "\", got " + doc["format"].dump()};
   if (!doc.contains("version")) return ParamsError{"version", "missing"};
-  if (!doc["version"].is_number_integer() || doc["version"].get<long long>() != kGaitFormatVersion)
-    return ParamsError{"version", "expected " + std::to_string(kGaitFormatVersion) + ", got " +
+  if (!doc["version"].is_number_integer() || doc["version"].get<long long>() < 1 ||
+      doc["version"].get<long long>() > kGaitFormatVersion)
+    return ParamsError{"version", "expected 1 to " + std::to_string(kGaitFormatVersion) + ", got " +
                                       doc["version"].dump()};
+  const int version = static_cast<int>(doc["version"].get<long long>());
   if (!doc.contains("character")) return ParamsError{"character", "missing"};
   const json& cj = doc["character"];
   const std::optional<Character> character =
@@ -88,8 +108,9 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   if (doc.contains("meta") && !doc["meta"].is_object())
     return ParamsError{"meta", "expected an object, got " + typeName(doc["meta"])};
   if (!doc.contains("params")) return ParamsError{"params", "missing"};
-  const json& pj = doc["params"];
-  if (!pj.is_object()) return ParamsError{"params", "expected an object, got " + typeName(pj)};
+  if (!doc["params"].is_object()) return ParamsError{"params", "expected an object, got " + typeName(doc["params"])};
+  json pj = doc["params"];
+  migrateParams(version, &pj);
 
   // Parse into a copy of the target: a refused file leaves *out as it was.
   GaitFile file;

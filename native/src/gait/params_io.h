@@ -19,7 +19,8 @@
 namespace gaitlab::gait {
 
 constexpr const char* kGaitFormat = "gaitlab-gait";
-constexpr int kGaitFormatVersion = 1;
+// The parameter schema's version (kSchemaVersion); files of older versions are migrated.
+constexpr int kGaitFormatVersion = kSchemaVersion;
 
 // Why a file was refused: `field` is the offending key (a schema name such as
 // "legFrame.pitch", or a top-level key such as "version"; empty when the text is not JSON at

@@ -113,6 +113,9 @@ Table build(Character c) {
   scalar("gains.hipTwistScale", kJointGains, {0, 1}, "1",
          "share of hip torque kept about the thigh's own axis (its small inertia needs less)",
          g.hipTwistScale);
+  scalar("gains.swingTargetRate", kJointGains, {0, 1}, "1",
+         "share of the swing targets' velocity the swing hip and knee PDs follow (0: position only)",
+         g.swingTargetRate);
   scalar("gains.maxTorque", kJointGains, biped ? Bounds{20, 1000} : Bounds{10, 400}, "N·m",
          "clamp on the magnitude of every joint torque", g.maxTorque);
 

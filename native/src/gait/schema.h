@@ -68,6 +68,6 @@ void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi);
 // shipped preset's value (a number, or an array of knots). With `only`, one character.
 std::string schemaJson(std::optional<Character> only = std::nullopt);
 
-constexpr int kSchemaVersion = 1;
+constexpr int kSchemaVersion = 2;
 
 }  // namespace gaitlab::gait

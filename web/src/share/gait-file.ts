@@ -1,7 +1,7 @@
 // The gait file: one character's gait parameters as JSON, the format the CLI reads with
 // `--params` and the page exports and imports (and carries, compressed, in share links):
 //
-//   {"format": "gaitlab-gait", "version": 1, "character": "biped" | "quadruped",
+//   {"format": "gaitlab-gait", "version": 2, "character": "biped" | "quadruped",
 //    "params": {"<dotted name>": number | [4 numbers]}, "meta": {...}}
 //
 // `version` is the parameter schema's version (gl_schema_json). Everything read from outside —
@@ -62,12 +62,20 @@ export class GaitError extends Error {
 
 /**
  * Upgrades a gait made against an older schema version by one version: renames, re-scales,
- * defaults for new parameters. Keyed by the version it upgrades *from*. The schema is at its
- * first version, so the table is empty; when a schema change renames or re-scales a parameter,
- * its migration goes here, and links and files made before keep working.
+ * defaults for new parameters. Keyed by the version it upgrades *from*; when a schema change
+ * renames, removes or re-scales a parameter, its migration goes here, and links and files made
+ * before keep working. The native loader does the same (migrateParams in
+ * native/src/gait/params_io.cpp).
  */
 export type Migration = (gait: GaitFile) => GaitFile;
-export const MIGRATIONS: Readonly<Record<number, Migration>> = {};
+export const MIGRATIONS: Readonly<Record<number, Migration>> = {
+  // 1 → 2: the quadruped's whole-body stance replaced the per-leg-frame support gain; the swing
+  // PDs may follow their targets' velocity (gains.swingTargetRate; 0 keeps the old behaviour).
+  1: (gait) => {
+    const params = Object.fromEntries(Object.entries(gait.params).filter(([name]) => !name.endsWith('.supportGain')));
+    return { ...gait, params: { 'gains.swingTargetRate': 0, ...params } };
+  },
+};
 
 const isRecord = (value: unknown): value is Record<string, unknown> =>
   typeof value === 'object' && value !== null && !Array.isArray(value);

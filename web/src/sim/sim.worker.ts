@@ -7,6 +7,7 @@
 import { FixedStepClock } from './fixed-step-clock';
 import { gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
 import type { TerrainKind } from './terrain-grid';
+import { CHARACTER_TYPES } from '../share/gait-file';
 import {
   errorMessage,
   type CharacterStatus,
@@ -83,10 +84,15 @@ const SPACING_X = 2.5;
 const SPACING_Z = 3;
 let gridColumns = 1;
 let nextSlot = 0;
-/** Goal speed every character starts with (m/s): the walk CLI's default. */
-const START_SPEED = 1.0;
-const START_TURN = 0;
-let lastGoal = { speed: START_SPEED, turn: START_TURN };
+/**
+ * The goal each type starts with: the lower of the speeds its preset is benchmarked at
+ * (bench/walking.mjs; a 0.49 m dog walks slower than a 1.8 m human). A goal given to all
+ * characters replaces both.
+ */
+const lastGoals: Record<CharacterType, { speed: number; turn: number }> = {
+  biped: { speed: 1.0, turn: 0 },
+  quadruped: { speed: 0.4, turn: 0 },
+};
 /**
  * The gait last given to every character of a type (setParams with id 'all'): characters added
  * later, and the characters of a new scene, walk with it too.
@@ -133,13 +139,14 @@ function newScene(): void {
   learner = null;
   // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid.
   addCharacters(options.characters, (i) => (i % 2 === 0 ? 'biped' : 'quadruped'));
-  sim.setGoal(-1, lastGoal.speed, lastGoal.turn);
   sim.setAutoReset(autoResetSeconds);
   // What the new scene keeps from the session (goal, auto-reset, gaits of a whole type) opens
   // its command log, so that the log alone with the seed still replays the run.
   const carried: SceneCommand[] = [
     ...(terrain !== 'flat' ? [{ type: 'setTerrain' as const, terrain }] : []),
-    { type: 'setGoal', id: 'all', speed: lastGoal.speed, turn: lastGoal.turn },
+    // One goal for all, once one was given to all; until then each type's start goal, which
+    // addCharacters gives every character it spawns.
+    ...(sameGoal(lastGoals.biped, lastGoals.quadruped) ? [{ type: 'setGoal' as const, id: 'all' as const, ...lastGoals.biped }] : []),
     { type: 'autoReset', seconds: autoResetSeconds },
     ...Object.entries(typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
   ];
@@ -160,6 +167,9 @@ function newScene(): void {
   postTerrain();
   if (!paused) clock.start(now());
 }
+
+const sameGoal = (a: { speed: number; turn: number }, b: { speed: number; turn: number }) =>
+  a.speed === b.speed && a.turn === b.turn;
 
 let autoResetSeconds = 0;
 /** The ground: kept across new scenes, like the goal and the auto-reset. */
@@ -184,7 +194,7 @@ function addCharacters(count: number, type: (i: number) => 'biped' | 'quadruped'
     const kind = type(i);
     const id = sim.spawn(Kind[kind], x, z, 0);
     if (id < 0) break; // the render buffer is full
-    sim.setGoal(id, lastGoal.speed, lastGoal.turn);
+    sim.setGoal(id, lastGoals[kind].speed, lastGoals[kind].turn);
     const gait = typeGaits[kind];
     if (gait && sim.setParams(id, Kind[kind], gait)) delete typeGaits[kind]; // refused: back to the preset
   }
@@ -195,7 +205,9 @@ function apply(command: SceneCommand): void {
   if (!sim) return;
   switch (command.type) {
     case 'setGoal':
-      if (command.id === 'all') lastGoal = { speed: command.speed, turn: command.turn };
+      if (command.id === 'all') {
+        for (const kind of CHARACTER_TYPES) lastGoals[kind] = { speed: command.speed, turn: command.turn };
+      }
       sim.setGoal(command.id === 'all' ? -1 : command.id, command.speed, command.turn);
       return;
     case 'throwBox':

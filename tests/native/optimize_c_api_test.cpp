@@ -49,6 +49,20 @@ TEST(OptimizeCApi, RefusesSpeedsOutOfRangeAndFractionalStarts) {
   EXPECT_NE(std::string(gl_last_error()).find("starts: 2.5 is not a whole number"), std::string::npos) << gl_last_error();
 }
 
+TEST(OptimizeCApi, TakesGroundsAndRefusesBadOnesNamingTheField) {
+  void* opt = gl_opt_create(GL_KIND_BIPED, 0, 2, 1, 1, nullptr, R"({"grounds": ["flat", "slope@3.14159"]})");
+  EXPECT_NE(opt, nullptr) << gl_last_error();
+  gl_opt_destroy(opt);
+  for (const char* bad : {R"({"grounds": ["hill"]})", R"({"grounds": ["slope@down"]})", R"({"grounds": []})",
+                          R"({"grounds": "slope"})", R"({"grounds": [3]})"}) {
+    SCOPED_TRACE(bad);
+    EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 2, 1, 1, nullptr, bad), nullptr);
+    EXPECT_EQ(std::string(gl_last_error()).find("grounds: "), 0u) << gl_last_error();
+  }
+  EXPECT_EQ(gl_opt_create(GL_KIND_BIPED, 0, 2, 1, 1, nullptr, R"({"grounds": ["hill"]})"), nullptr);
+  EXPECT_NE(std::string(gl_last_error()).find("'hill' is not flat, slope or bumps"), std::string::npos);
+}
+
 // The optimize panel checks its form against this table before it starts a search.
 TEST(OptimizeCApi, DescribesItsSettingsWithBoundsAndDefaults) {
   const json j = json::parse(gl_opt_settings_json());
@@ -69,4 +83,6 @@ TEST(OptimizeCApi, DescribesItsSettingsWithBoundsAndDefaults) {
   EXPECT_EQ(j["speeds"]["min"], -5.0);
   EXPECT_EQ(j["speeds"]["max"], 5.0);
   EXPECT_EQ(j["speeds"]["default"], json::array({1.0}));
+  EXPECT_EQ(j["grounds"]["default"], json::array({"flat"}));
+  EXPECT_EQ(j["grounds"]["terrains"], json::array({"flat", "slope", "bumps"}));
 }

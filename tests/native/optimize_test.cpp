@@ -249,6 +249,34 @@ TEST(OptimizeObjective, SettingsAreCheckedAgainstTheirBounds) {
   EXPECT_EQ(s.starts, 3);
 }
 
+// Grounds ("slope@3.14159"): a terrain name, optionally a start heading; anything else is
+// refused with a message that names the field.
+TEST(OptimizeObjective, GroundsAreParsedAndBadOnesRefusedNamingTheField) {
+  Ground g;
+  EXPECT_EQ(parseGround("slope@3.14159", &g), "");
+  EXPECT_EQ(g.terrain, physics::TerrainKind::Slope);
+  EXPECT_EQ(g.heading, 3.14159);
+  EXPECT_EQ(groundText(g), "slope@3.14159");
+  EXPECT_EQ(parseGround("bumps", &g), "");
+  EXPECT_EQ(g.terrain, physics::TerrainKind::Bumps);
+  EXPECT_EQ(g.heading, 0.0);
+  EXPECT_EQ(groundText(g), "bumps");
+  const Ground before = g;
+  for (const char* bad : {"hill", "", "Slope", "slope@", "slope@down", "slope@1x", "slope@9", "slope@nan"}) {
+    SCOPED_TRACE(bad);
+    const std::string error = parseGround(bad, &g);
+    EXPECT_EQ(error.rfind("grounds: ", 0), 0u) << error;
+    EXPECT_EQ(g.terrain, before.terrain);  // nothing of a refused ground is used
+  }
+  EXPECT_NE(parseGround("hill", &g).find("'hill' is not flat, slope or bumps"), std::string::npos);
+  // The default is the flat ground every search before grounds walked, and settingsJson records it.
+  ObjectiveSettings s;
+  ASSERT_EQ(s.grounds.size(), 1u);
+  EXPECT_EQ(s.grounds[0].terrain, physics::TerrainKind::Flat);
+  EXPECT_EQ(s.grounds[0].heading, 0.0);
+  EXPECT_NE(settingsJson(s).find(R"("grounds":["flat"])"), std::string::npos) << settingsJson(s);
+}
+
 // ---- searches ----------------------------------------------------------------------------------
 
 namespace {
@@ -315,6 +343,37 @@ TEST(OptimizeSearch, TheSameSeedGivesTheSameSearchBitForBitWhateverTheThreadCoun
     b->step();
   }
   EXPECT_NE(a->bestObjective(), b->bestObjective());
+}
+
+// Episodes on terrain: the ground and the start heading reach the episode (the slope downhill
+// scores differently from flat ground), and a search over several grounds is as reproducible
+// as one over flat ground.
+TEST(OptimizeSearch, GroundsAreWalkedAndTheSearchStaysReproducible) {
+  const gait::GaitParams preset = gait::defaultParams(gait::Character::Biped);
+  ObjectiveSettings s;
+  s.seconds = 1.5;
+  s.warmup = 0.5;
+  const ObjectiveTerms flat = evaluate(gait::Character::Biped, preset, s, 5);
+  ASSERT_EQ(parseGround("slope@3.14159", &s.grounds[0]), "");
+  const ObjectiveTerms down = evaluate(gait::Character::Biped, preset, s, 5);
+  EXPECT_NE(flat.total, down.total);
+  EXPECT_EQ(down.total, evaluate(gait::Character::Biped, preset, s, 5).total);
+  // Two grounds: the mean of the two single-ground objectives.
+  Ground slope = s.grounds[0];
+  s.grounds = {Ground{}, slope};
+  const ObjectiveTerms both = evaluate(gait::Character::Biped, preset, s, 5);
+  EXPECT_DOUBLE_EQ(both.total, (flat.total + down.total) / 2);
+
+  SearchOptions o = quickSearch(Method::Greedy, 1);
+  o.objective.seconds = 1.0;
+  o.objective.grounds = {Ground{}, slope};
+  const Outcome a = search(o, 2);
+  o.threads = 2;
+  const Outcome b = search(o, 2);
+  EXPECT_EQ(std::memcmp(&a.best, &b.best, sizeof(a.best)), 0);
+  EXPECT_EQ(a.objective, b.objective);
+  EXPECT_EQ(a.mismatches, 0);
+  EXPECT_EQ(b.mismatches, 0);
 }
 
 TEST(OptimizeSearch, GreedyKeepsTheBestAndNeverGetsWorse) {

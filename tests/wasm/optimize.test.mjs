@@ -65,6 +65,8 @@ test('optimize refuses bad options', () => {
     [['optimize', '--objective', 'wr=-1', '--out', '/tmp/x.json'], /--objective: wr: -1\.0 is outside/],
     [['optimize', '--objective', 'colour=1', '--out', '/tmp/x.json'], /unknown objective setting 'colour'/],
     [['optimize', '--speeds', '1,fast', '--out', '/tmp/x.json'], /--speeds: 'fast' is not a speed/],
+    [['optimize', '--grounds', 'flat,hill', '--out', '/tmp/x.json'], /--grounds: 'hill' is not flat, slope or bumps/],
+    [['optimize', '--grounds', 'slope@down', '--out', '/tmp/x.json'], /--grounds: 'slope@down': the heading after '@' is not a number/],
     [['optimize', '--candidates', '1', '--out', '/tmp/x.json'], /--candidates: 1 is outside/],
   ]) {
     const r = run(native, args);

@@ -278,6 +278,24 @@ void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int thr
         }
         continue;
       }
+      if (item.key() == "grounds") {
+        o.objective.grounds.clear();
+        for (const auto& v : item.value()) {
+          optimize::Ground g;
+          const std::string error = v.is_string() ? optimize::parseGround(v.get<std::string>(), &g)
+                                                  : "grounds: expected strings such as \"slope@3.14159\"";
+          if (!error.empty()) {
+            fail(GL_ERR_INVALID_PARAMS, error);
+            return nullptr;
+          }
+          o.objective.grounds.push_back(g);
+        }
+        if (!item.value().is_array() || o.objective.grounds.empty()) {
+          fail(GL_ERR_INVALID_PARAMS, "grounds: expected a non-empty array of strings");
+          return nullptr;
+        }
+        continue;
+      }
       const std::string error = item.value().is_number()
                                     ? optimize::setSetting(o.objective, item.key(), item.value().get<double>())
                                     : item.key() + ": expected a number";
@@ -302,7 +320,11 @@ const char* gl_opt_settings_json(void) {
   const nlohmann::ordered_json j = {
       {"settings", settings},
       {"speeds", {{"min", kMinGoalSpeed}, {"max", kMaxGoalSpeed}, {"default", defaults.speeds}, {"unit", "m/s"},
-                  {"description", "goal speeds: every candidate walks an episode at each"}}}};
+                  {"description", "goal speeds: every candidate walks an episode at each"}}},
+      {"grounds", {{"default", nlohmann::ordered_json::array({"flat"})},
+                   {"terrains", nlohmann::ordered_json::array({"flat", "slope", "bumps"})},
+                   {"description", "grounds: every candidate walks an episode on each, written TERRAIN or "
+                                   "TERRAIN@HEADING (rad it starts facing)"}}}};
   g_string = j.dump();
   return g_string.c_str();
 }

@@ -94,7 +94,8 @@ GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
 
 // A new search. `kind` is GL_KIND_BIPED or GL_KIND_QUADRUPED; `method` 0 = greedy (thesis §3.3),
 // 1 = CMA-ES; `start_json` a gait file to start from, or NULL for the preset; `settings_json`
-// NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,...}, see
+// NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,
+// "grounds":["flat","slope@3.14159"],...}, see
 // optimize/objective.h). `threads` is clamped to [1, GL_MAX_THREADS]. Returns NULL on error
 // (gl_last_error() says why).
 GL_EXPORT void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
@@ -102,7 +103,9 @@ GL_EXPORT void* gl_opt_create(int kind, int method, int candidates, uint32_t see
 GL_EXPORT void gl_opt_destroy(void* opt);
 // The objective settings gl_opt_create accepts, for forms that check them before a search:
 // {"settings":[{"name","min","max","default","unit","description","integer"},...],
-//  "speeds":{"min","max","default":[...],"unit","description"}} (optimize/objective.h).
+//  "speeds":{"min","max","default":[...],"unit","description"},
+//  "grounds":{"default":["flat"],"terrains":["flat","slope","bumps"],"description"}}
+// (optimize/objective.h).
 GL_EXPORT const char* gl_opt_settings_json(void);
 // Runs one generation; returns the best objective so far.
 GL_EXPORT double gl_opt_step(void* opt);

@@ -69,6 +69,9 @@ const char* kUsage =
     "  --out FILE                    where the best gait is written (required)\n"
     "  --seconds S                   length of each evaluation episode (default 800 steps)\n"
     "  --speeds A,B,...              goal speeds each candidate walks at, m/s (default 1.0)\n"
+    "  --grounds G,...               grounds each candidate walks on (default flat): flat, slope\n"
+    "                                or bumps, each optionally @HEADING (rad it starts facing;\n"
+    "                                on the slope 0 climbs first, 3.14159 descends first)\n"
     "  --objective NAME=V,...        objective settings: wd wv wa wr fallPenalty warmup starts\n"
     "                                startImpulse turnRate pushImpulse pushEvery\n"
     "  --json                        print a JSON summary on stdout (progress goes to stderr)\n"
@@ -191,7 +194,7 @@ json termsJson(const optimize::ObjectiveTerms& t) {
 int optimizeCommand(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
-             "--threads", "--out", "--seconds", "--speeds", "--objective"},
+             "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective"},
             {"--json"});
   if (!o.error.empty()) return usageError(o.error);
   std::optional<gait::Character> chosen;
@@ -255,6 +258,15 @@ int optimizeCommand(int argc, char** argv) {
       if (!parseNumber(part, &v) || v < optimize::kMinGoalSpeed || v > optimize::kMaxGoalSpeed)
         return usageError("--speeds: '" + part + "' is not a speed in [-5, 5] m/s");
       search.objective.speeds.push_back(v);
+    }
+  }
+  if (o.values.count("--grounds")) {
+    search.objective.grounds.clear();
+    for (const std::string& part : split(o.values["--grounds"])) {
+      optimize::Ground g;
+      const std::string error = optimize::parseGround(part, &g);
+      if (!error.empty()) return usageError("--" + error);
+      search.objective.grounds.push_back(g);
     }
   }
   if (o.values.count("--objective")) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "gait/heading.h"
@@ -50,11 +51,37 @@ std::string setSetting(ObjectiveSettings& s, const std::string& name, double val
   return error;
 }
 
+std::string parseGround(const std::string& text, Ground* out) {
+  const size_t at = text.find('@');
+  const std::string name = text.substr(0, at);
+  Ground g;
+  if (!physics::parseTerrain(name, &g.terrain))
+    return "grounds: '" + name + "' is not flat, slope or bumps";
+  if (at != std::string::npos) {
+    const std::string number = text.substr(at + 1);
+    char* end = nullptr;
+    g.heading = std::strtod(number.c_str(), &end);
+    if (number.empty() || *end != '\0' || !std::isfinite(g.heading) || std::abs(g.heading) > kMaxGroundHeading)
+      return "grounds: '" + text + "': the heading after '@' is not a number in [-7, 7] rad";
+  }
+  *out = g;
+  return "";
+}
+
+std::string groundText(const Ground& g) {
+  std::string text = physics::terrainName(g.terrain);
+  if (g.heading != 0) text += "@" + nlohmann::json(g.heading).dump();
+  return text;
+}
+
 std::string settingsJson(const ObjectiveSettings& settings) {
   ObjectiveSettings s = settings;
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   forEachSetting(s, [&](const SettingSpec& spec, double& v) { j[spec.name] = v; });
   j["speeds"] = s.speeds;
+  nlohmann::ordered_json grounds = nlohmann::ordered_json::array();
+  for (const Ground& g : s.grounds) grounds.push_back(groundText(g));
+  j["grounds"] = grounds;
   return j.dump();
 }
 
@@ -113,8 +140,11 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime) const {
 }
 
 ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
-                          const ObjectiveSettings& settings, double speed, int start, uint32_t seed) {
+                          const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
+                          const Ground& ground) {
   sim::WalkOptions w;
+  w.terrain = ground.terrain;
+  w.heading = ground.heading;
   w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
   w.params = &params;
   w.speed = speed;
@@ -153,18 +183,20 @@ ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
                         const ObjectiveSettings& settings, uint32_t seed) {
   ObjectiveTerms mean;
   int episodes = 0;
-  for (double speed : settings.speeds) {
-    for (int start = 0; start < settings.starts; ++start) {
-      const ObjectiveTerms t = runEpisode(c, params, settings, speed, start, seed);
-      mean.fd += t.fd;
-      mean.fv += t.fv;
-      mean.fa += t.fa;
-      mean.fr += t.fr;
-      mean.fall += t.fall;
-      mean.total += t.total;
-      mean.seconds += t.seconds;
-      mean.fell = mean.fell || t.fell;
-      ++episodes;
+  for (const Ground& ground : settings.grounds) {
+    for (double speed : settings.speeds) {
+      for (int start = 0; start < settings.starts; ++start) {
+        const ObjectiveTerms t = runEpisode(c, params, settings, speed, start, seed, ground);
+        mean.fd += t.fd;
+        mean.fv += t.fv;
+        mean.fa += t.fa;
+        mean.fr += t.fr;
+        mean.fall += t.fall;
+        mean.total += t.total;
+        mean.seconds += t.seconds;
+        mean.fell = mean.fell || t.fell;
+        ++episodes;
+      }
     }
   }
   if (episodes) {

@@ -33,8 +33,24 @@
 #include <vector>
 
 #include "gait/schema.h"
+#include "physics/terrain.h"
 
 namespace gaitlab::optimize {
+
+// One ground an episode is walked on: a terrain (physics/terrain.h; bumps drawn from the
+// episode's seed) and the heading the character starts facing there (rad about +y, 0 = +z).
+// On the slope the heading decides what comes first: 0 climbs from the origin, π descends,
+// π/2 walks across. Written "slope@3.14159" (the heading after '@', 0 when left out).
+struct Ground {
+  physics::TerrainKind terrain = physics::TerrainKind::Flat;
+  double heading = 0.0;
+};
+// Ground headings must lie in this range, rad (as `gaitlab walk --heading`).
+constexpr double kMaxGroundHeading = 7.0;
+// Parses "flat", "slope", "bumps", optionally "@HEADING"; returns an error message naming the
+// `grounds` field, empty on success.
+std::string parseGround(const std::string& text, Ground* out);
+std::string groundText(const Ground& g);  // "slope@3.14159", "flat" for heading 0
 
 // How candidates are scored: weights of eq. 3.10 and the episodes each candidate walks.
 struct ObjectiveSettings {
@@ -42,7 +58,9 @@ struct ObjectiveSettings {
   double fallPenalty = 100.0;
   double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
   double warmup = 1.0;             // s before travel and velocity are measured
-  // Episodes per evaluation: every goal speed × every start state; the objective is their mean.
+  // Episodes per evaluation: every ground × every goal speed × every start state; the objective
+  // is their mean. The default, flat ground facing +z, is what every search before grounds ran.
+  std::vector<Ground> grounds = {Ground{}};
   std::vector<double> speeds = {1.0};
   int starts = 1;                // start state 0 stands still; the others get a random nudge
   double startImpulse = 10.0;    // N·s, horizontal, random direction, for starts 1..N-1
@@ -53,7 +71,8 @@ struct ObjectiveSettings {
 
 // The scalar settings as a schema-style table (name, bounds, default, unit, description), so
 // they are read, checked and exported the same way as gait parameters. `speeds` is a list and
-// is handled separately (`speeds` in JSON, --speeds on the command line).
+// is handled separately (`speeds` in JSON, --speeds on the command line), as is `grounds`
+// (a list of strings, "flat", "slope@3.14159": --grounds on the command line).
 struct SettingSpec {
   const char* name;
   double min, max;
@@ -66,7 +85,7 @@ constexpr double kMinGoalSpeed = -5.0, kMaxGoalSpeed = 5.0;
 void forEachSetting(ObjectiveSettings& s, const std::function<void(const SettingSpec&, double&)>& visit);
 // Sets one scalar setting by name; returns an error message, empty on success.
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value);
-std::string settingsJson(const ObjectiveSettings& s);  // {"wd":1,...,"speeds":[...]}
+std::string settingsJson(const ObjectiveSettings& s);  // {"wd":1,...,"speeds":[...],"grounds":[...]}
 
 struct ObjectiveTerms {
   double fd = 0, fv = 0, fa = 0, fr = 0;
@@ -111,13 +130,14 @@ class ObjectiveRecorder {
   double lastTime_ = 0;
 };
 
-// One episode: the character walks with `params` from start state `start` at goal `speed`
-// (sim::runWalk with the recorder observing every step). `seed` fixes the start nudge's
-// direction and the pushes' phases.
+// One episode: the character walks with `params` on `ground` from start state `start` at goal
+// `speed` (sim::runWalk with the recorder observing every step). `seed` fixes the start nudge's
+// direction, the pushes' phases and the bumps.
 ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
-                          const ObjectiveSettings& settings, double speed, int start, uint32_t seed);
+                          const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
+                          const Ground& ground = Ground{});
 
-// The objective of a parameter set: the mean over every speed × start state. Deterministic:
+// The objective of a parameter set: the mean over every ground × speed × start state. Deterministic:
 // the same inputs give the same bits (each episode is its own single-threaded simulation).
 ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
                         const ObjectiveSettings& settings, uint32_t seed);

@@ -43,7 +43,7 @@ const GOALS = {
   biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }] },
   quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }] },
 };
-const PUSHES = [10, 15, 20, 25, 30, 40, 60, 80];  // N·s, lateral at the leg frame
+const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 60, 80];  // N·s, lateral at the leg frame
 const PUSH_EVERY = 2.5;                   // s: 20 pushes in 52 s
 
 function walk(character, extra, wasm = false) {

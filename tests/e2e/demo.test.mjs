@@ -176,11 +176,9 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.close();
   });
 
-  // Needs characters that walk (the controller issue). Until the controller keeps them upright
-  // this fails, and says so: it is the demo's first promise.
-  // Acceptance test of issue 3 (the controller): it runs and reports, but is marked TODO (not
-  // counted as a failure) until the characters walk; see docs/controller-notes.md.
-  it('the crowd walks: every character advances and none has fallen after 10 s', { timeout: TEST_TIMEOUT, todo: 'bipeds walk, quadrupeds do not yet (issue 3)' }, async () => {
+  // The demo's first promise: the default crowd (bipeds at 1.0 m/s, quadrupeds at 0.4 m/s, the
+  // speeds their presets are benchmarked at) walks.
+  it('the crowd walks: every character advances and none has fallen after 10 s', { timeout: TEST_TIMEOUT }, async () => {
     const { page, problems } = await openPage(server.url);
     await ready(page);
     const start = await freshCharacters(page);
@@ -195,6 +193,37 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
       .map((c) => `${c.type} #${c.id}`);
     assert.deepEqual(fallen, [], `characters fallen after 10 s: ${fallen.length} of ${end.length}`);
     assert.deepEqual(stuck, [], 'every character walked at least 2 m in 10 s');
+    assert.deepEqual(problems, [], 'no page errors');
+    await page.close();
+  });
+
+  it('the quadrupeds switch from trot to walk and back in mid-stride, and keep walking', { timeout: TEST_TIMEOUT }, async (t) => {
+    const { page, problems } = await openPage(`${server.url}?characters=4`);
+    await ready(page);
+    if (await needsSchema(t, page)) return;
+    const quadrupeds = (await page.evaluate(() => window.gaitlab.characters())).filter((c) => c.type === 'quadruped').map((c) => c.id);
+    assert.equal(quadrupeds.length, 2);
+    const walk = await page.evaluate(async () => (await fetch('presets/quadruped-walk.json')).json());
+    const gaitSelect = page.locator('.lil-controller', { hasText: 'quadruped gait' }).locator('select');
+    const simTime = async () => (await stats(page)).simTime;
+
+    await gaitSelect.selectOption('walk');
+    await page.waitForTimeout(1000);
+    for (const id of quadrupeds) {
+      assert.deepEqual((await page.evaluate((i) => window.gaitlab.getGait(i), id)).params, walk.params, `quadruped #${id} walks with the walk preset`);
+    }
+    const switched = await simTime();
+    await page.waitForFunction((t0) => window.gaitlab.stats().simTime >= t0 + 5, switched, { timeout: PAGE_TIMEOUT, polling: 250 });
+    await gaitSelect.selectOption('trot');
+    await page.waitForTimeout(1000);
+    const trot = await page.evaluate(() => window.gaitlab.presetGait('quadruped'));
+    for (const id of quadrupeds) {
+      assert.deepEqual((await page.evaluate((i) => window.gaitlab.getGait(i), id)).params, trot.params, `quadruped #${id} trots again`);
+    }
+    const back = await simTime();
+    await page.waitForFunction((t0) => window.gaitlab.stats().simTime >= t0 + 5, back, { timeout: PAGE_TIMEOUT, polling: 250 });
+    const fallen = (await freshCharacters(page)).filter((c) => c.fallen).map((c) => `${c.type} #${c.id}`);
+    assert.deepEqual(fallen, [], 'nobody fell over the two switches');
     assert.deepEqual(problems, [], 'no page errors');
     await page.close();
   });

@@ -12,6 +12,7 @@
 #include "optimize/objective.h"
 #include "optimize/optimizer.h"
 #include "optimize/random.h"
+#include "sim/walk_trial.h"
 
 using namespace gaitlab;
 using namespace gaitlab::optimize;
@@ -237,6 +238,33 @@ TEST(OptimizeObjective, WeightsScaleTheirTerms) {
   }, 3.0);
   EXPECT_GT(t.fd * t.fv * t.fa * t.fr, 0.0);
   EXPECT_NEAR(t.total, 2 * t.fd + 3 * t.fv + 5 * t.fa + 7 * t.fr, 1e-12);
+}
+
+// f_t (ours): the mean over legs of (measured − configured duty factor)², against hand sums; and
+// in an episode it is what the walk measured, weighted by w_t into the total.
+TEST(OptimizeObjective, TimingDeviationIsTheMeanSquaredDutyError) {
+  EXPECT_EQ(timingDeviation({0.5, 0.5}, {0.5, 0.5}), 0.0);
+  EXPECT_NEAR(timingDeviation({0.4, 0.6, 0.5, 0.5}, {0.5, 0.5, 0.5, 0.7}), (0.01 + 0.01 + 0 + 0.04) / 4, 1e-15);
+  EXPECT_EQ(timingDeviation({}, {}), 0.0);
+
+  ObjectiveSettings s;
+  s.seconds = 3.0;
+  s.speeds = {0.5};
+  const gaitlab::gait::GaitParams p = gaitlab::gait::defaultParams(gaitlab::gait::Character::Quadruped);
+  const ObjectiveTerms plain = runEpisode(gaitlab::gait::Character::Quadruped, p, s, 0.5, 0, 1);
+  s.wt = 10.0;
+  const ObjectiveTerms weighted = runEpisode(gaitlab::gait::Character::Quadruped, p, s, 0.5, 0, 1);
+  gaitlab::sim::WalkOptions w;
+  w.character = gaitlab::sim::Kind::Quadruped;
+  w.params = &p;
+  w.speed = 0.5;
+  w.seconds = 3.0;
+  w.seed = 1;
+  const auto walk = gaitlab::sim::runWalk(w);
+  EXPECT_GT(plain.ft, 0.0);
+  EXPECT_EQ(plain.ft, timingDeviation(walk.dutyMeasured, walk.dutyConfig));
+  EXPECT_EQ(weighted.ft, plain.ft);
+  EXPECT_NEAR(weighted.total, plain.total + 10.0 * plain.ft, 1e-12);
 }
 
 TEST(OptimizeObjective, SettingsAreCheckedAgainstTheirBounds) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gait/defaults.h"
+#include "gait/params_io.h"
 #include "sim/simulation.h"
 #include "sim/walk_trial.h"
 
@@ -45,7 +46,8 @@ TEST_P(Walking, ThePresetMeetsTheWalkingCriteria) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, Walking,
-                         testing::Values(Case{Kind::Biped, 0.5}, Case{Kind::Biped, 1.0}),
+                         testing::Values(Case{Kind::Biped, 0.5}, Case{Kind::Biped, 1.0},
+                                         Case{Kind::Quadruped, 0.4}, Case{Kind::Quadruped, 0.8}),
                          caseName);
 
 // The stance legs' virtual force F_v = K_v (v_d − v) must move the leg frame towards the goal
@@ -75,7 +77,16 @@ TEST(StanceLeg, VelocityForceMovesTheLegFrameForwards) {
 TEST(BodyStance, TheQuadrupedStandsOnFourFeet) {
   Simulation sim(1, 1);
   sim.spawn(Kind::Quadruped, 0, 0, 0);
-  gaitlab::gait::GaitParams p = sim.controller(0).params();
+  // The gains of the §10 trot (a schema-1 file, migrated on load). The shipped trot's leg frames
+  // keep only a weak orientation PD (k_p 65 and 10 N·m/rad): its balance is in its foot
+  // placement, and with its feet planted it creeps sideways and tips over after 8 s
+  // (controller-notes §11).
+  gaitlab::gait::GaitFile stand;
+  const auto error = gaitlab::gait::loadGaitFile(
+      std::string(GAITLAB_SOURCE_DIR) + "/tests/native/fixtures/quadruped-trot-s10.json",
+      gaitlab::gait::Character::Quadruped, &stand);
+  ASSERT_FALSE(error) << error->describe();
+  gaitlab::gait::GaitParams p = stand.params;
   for (auto& leg : p.legs) leg.dutyFactor = 1.0;  // clamped to the player's maximum
   sim.controller(0).setParams(p);
   sim.setGoal(0, {0.0, 0.0});
@@ -105,4 +116,64 @@ TEST(BodyStance, VelocityForceMovesTheQuadrupedForwards) {
   const auto s = sim.character(0).segmentState(0);
   EXPECT_GT(s.position.z() - z0, 0.02);
   EXPECT_GT(s.linearVelocity.z(), 0.05);
+}
+
+// Swing PDs that follow their targets' velocity (gains.swingTargetRate, controller-notes §11):
+// with the position-only PD of the thesis the quadruped's swing feet lag their path and strike
+// late, so its legs spend less of the cycle in stance than configured; following the path's
+// velocity they arrive (nearly) on time.
+TEST(SwingLeg, FollowingTheTargetsVelocityKeepsTheDutyFactor) {
+  const auto largestShortfall = [](double rate) {
+    Simulation sim(1, 1);
+    sim.spawn(Kind::Quadruped, 0, 0, 0);
+    gaitlab::gait::GaitParams p = sim.controller(0).params();
+    p.gains.swingTargetRate = rate;
+    sim.controller(0).setParams(p);
+    sim.setGoal(0, {0.4, 0.0});
+    for (int step = 0; step < 10 * 120 && !gaitlab::sim::hasFallen(sim, 0); ++step) sim.step(1);
+    const auto& player = sim.controller(0).player();
+    EXPECT_GT(player.leg(0).touchDowns, 10) << "rate " << rate;
+    double shortfall = 0;
+    for (int l = 0; l < player.legCount(); ++l)
+      shortfall = std::max(shortfall, player.schedule(l).dutyFactor - player.measuredDutyFactor(l));
+    return shortfall;
+  };
+  EXPECT_LT(largestShortfall(1.0), 0.1);
+  EXPECT_GT(largestShortfall(0.0), 0.15);
+}
+
+// The quadruped's second gait, a lateral-sequence walk (public/presets/quadruped-walk.json): it
+// walks on its own, and a quadruped switches from it to the trot preset and back in mid-stride
+// (new parameters at any phase; the gait player keeps its phase) without falling.
+TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
+  gaitlab::gait::GaitFile walk;
+  const auto error = gaitlab::gait::loadGaitFile(
+      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-walk.json",
+      gaitlab::gait::Character::Quadruped, &walk);
+  ASSERT_FALSE(error) << error->describe();
+  WalkOptions o;
+  o.character = Kind::Quadruped;
+  o.params = &walk.params;
+  o.speed = 0.3;
+  o.seconds = 20;
+  const auto r = runWalk(o);
+  ASSERT_FALSE(r.fell) << "the walk fell after " << r.fallTime << " s";
+  EXPECT_NEAR(r.meanSpeed, o.speed, 0.15 * o.speed);
+
+  Simulation sim(1, 1);
+  sim.spawn(Kind::Quadruped, 0, 0, 0);
+  const gaitlab::gait::GaitParams trot = sim.controller(0).params();
+  double z = sim.character(0).segmentState(0).position.z();
+  for (int part = 0; part < 4; ++part) {
+    const bool walking = part % 2 == 0;
+    sim.controller(0).setParams(walking ? walk.params : trot);
+    sim.setGoal(0, {walking ? 0.3 : 0.6, 0.0});
+    for (int step = 0; step < 5 * 120; ++step) {
+      sim.step(1);
+      ASSERT_FALSE(gaitlab::sim::hasFallen(sim, 0)) << "fell " << step / 120.0 << " s into part " << part;
+    }
+    const double now = sim.character(0).segmentState(0).position.z();
+    EXPECT_GT(now - z, walking ? 0.8 : 2.0) << "part " << part << " of the run";
+    z = now;
+  }
 }

@@ -20,6 +20,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"wv", 0, 1000, "s²/m²", "w_v: weight of velocity deviation f_v (eq. 3.10)"}, s.wv);
   visit({"wa", 0, 1000, "1", "w_h: weight of leg-frame acceleration f_a (eq. 3.10)"}, s.wa);
   visit({"wr", 0, 1000, "1/rad²", "w_r: weight of leg-frame rotation deviation f_r (eq. 3.10)"}, s.wr);
+  visit({"wt", 0, 1000, "1", "w_t: weight of footfall timing deviation f_t, duty factors measured against configured (ours)"}, s.wt);
   visit({"fallPenalty", 0, 1e6, "1", "added for a fall, scaled by 1 + the share of the episode left"},
         s.fallPenalty);
   visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
@@ -176,7 +177,18 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
     recorder.add(s.time(), frames.data(), static_cast<int>(frames.size()));
   };
   const sim::WalkResult r = sim::runWalk(w);
-  return recorder.finish(r.fell, r.fallTime);
+  ObjectiveTerms t = recorder.finish(r.fell, r.fallTime);
+  t.ft = timingDeviation(r.dutyMeasured, r.dutyConfig);
+  t.total += settings.wt * t.ft;
+  return t;
+}
+
+double timingDeviation(const std::vector<double>& measured, const std::vector<double>& configured) {
+  const size_t legs = std::min(measured.size(), configured.size());
+  if (legs == 0) return 0.0;
+  double sum = 0;
+  for (size_t l = 0; l < legs; ++l) sum += (measured[l] - configured[l]) * (measured[l] - configured[l]);
+  return sum / static_cast<double>(legs);
 }
 
 ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
@@ -191,6 +203,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
         mean.fv += t.fv;
         mean.fa += t.fa;
         mean.fr += t.fr;
+        mean.ft += t.ft;
         mean.fall += t.fall;
         mean.total += t.total;
         mean.seconds += t.seconds;
@@ -200,7 +213,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
     }
   }
   if (episodes) {
-    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.fall, &mean.total}) *v /= episodes;
+    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.fall, &mean.total}) *v /= episodes;
   }
   return mean;
 }

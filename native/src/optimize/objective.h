@@ -22,6 +22,12 @@
 //   f_r  mean over steps and leg frames of θ², θ the angle (rad) of the rotation from the goal
 //        heading frame (upright, facing the goal heading) to the leg frame.
 //
+// Beyond the thesis, a fifth term, 0 unless weighted (w_t, default 0: searches score as before):
+//
+//   f_t  mean over legs of (measured duty factor − configured duty factor)²: how far the feet's
+//        real stance time is from the footfall pattern (late strikes shorten it; the walking
+//        criteria ask for ±0.1).
+//
 // A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
 // any fall scores worse than any walk whose terms stay below fallPenalty, and a later fall
 // scores better than an earlier one, so a search that starts from a falling gait climbs
@@ -55,6 +61,7 @@ std::string groundText(const Ground& g);  // "slope@3.14159", "flat" for heading
 // How candidates are scored: weights of eq. 3.10 and the episodes each candidate walks.
 struct ObjectiveSettings {
   double wd = 1.0, wv = 1.0, wa = 1.0, wr = 1.0;  // w_d, w_v, w_h, w_r of eq. 3.10
+  double wt = 0.0;                                 // w_t of f_t (footfall timing, ours)
   double fallPenalty = 100.0;
   double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
   double warmup = 1.0;             // s before travel and velocity are measured
@@ -89,8 +96,9 @@ std::string settingsJson(const ObjectiveSettings& s);  // {"wd":1,...,"speeds":[
 
 struct ObjectiveTerms {
   double fd = 0, fv = 0, fa = 0, fr = 0;
+  double ft = 0;          // footfall timing deviation (duty factors)
   double fall = 0;        // the fall penalty, 0 if it did not fall
-  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + fall
+  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + fall
   bool fell = false;
   double seconds = 0;     // simulated
 };
@@ -129,6 +137,9 @@ class ObjectiveRecorder {
   std::vector<Eigen::Vector3d> lastVelocity_;
   double lastTime_ = 0;
 };
+
+// f_t of one episode: the mean over legs of (measured − configured duty factor)²; 0 for no legs.
+double timingDeviation(const std::vector<double>& measured, const std::vector<double>& configured);
 
 // One episode: the character walks with `params` on `ground` from start state `start` at goal
 // `speed` (sim::runWalk with the recorder observing every step). `seed` fixes the start nudge's

@@ -25,20 +25,21 @@ import type { CharacterStatus } from '../sim/protocol';
 import type { SimClient } from '../sim/sim-client';
 
 /**
- * Footfall patterns of the quadruped (Hildebrand's gait diagrams, as in the thesis's Figure 2.1):
- * per leg the step trigger (phase of lift-off) and duty factor. The preset is a trot.
+ * The quadruped's gaits. Walk and trot are whole gaits, each tuned by the optimiser for its own
+ * footfall pattern (public/presets/quadruped.json is the trot, quadruped-walk.json the walk);
+ * choosing one switches the running characters to it in mid-stride. Pace and bound are only
+ * footfall patterns (Hildebrand's gait diagrams, as in the thesis's Figure 2.1: per leg the step
+ * trigger, the phase of lift-off, and the duty factor) laid over the gait being edited; no gait
+ * has been tuned for them, and they fall.
  */
-const QUADRUPED_GAITS: Record<string, Record<string, [number, number]>> = {
-  // Lateral-sequence walk: hind left, fore left, hind right, fore right a quarter cycle apart,
-  // three feet on the ground most of the time.
-  walk: { backLeft: [0, 0.75], frontLeft: [0.25, 0.75], backRight: [0.5, 0.75], frontRight: [0.75, 0.75] },
-  // Diagonal pairs together.
-  trot: { frontLeft: [0, 0.6], backRight: [0, 0.6], frontRight: [0.5, 0.6], backLeft: [0.5, 0.6] },
+const QUADRUPED_GAIT_FILES: Record<string, string> = { walk: 'presets/quadruped-walk.json', trot: '' };
+const QUADRUPED_PATTERNS: Record<string, Record<string, [number, number]>> = {
   // Lateral pairs together.
   pace: { frontLeft: [0, 0.6], backLeft: [0, 0.6], frontRight: [0.5, 0.6], backRight: [0.5, 0.6] },
   // Fore pair, then hind pair.
   bound: { frontLeft: [0, 0.5], frontRight: [0, 0.5], backLeft: [0.5, 0.5], backRight: [0.5, 0.5] },
 };
+const QUADRUPED_GAITS = [...Object.keys(QUADRUPED_GAIT_FILES), ...Object.keys(QUADRUPED_PATTERNS)];
 
 /** Undo steps kept per session. */
 const UNDO_LIMIT = 100;
@@ -116,7 +117,7 @@ export class GaitSession {
       });
     const pattern = { quadrupedGait: 'trot' };
     folder
-      .add(pattern, 'quadrupedGait', Object.keys(QUADRUPED_GAITS))
+      .add(pattern, 'quadrupedGait', QUADRUPED_GAITS)
       .name('quadruped gait')
       .onChange((name: string) => void this.setQuadrupedGait(name));
     folder.add({ undo: () => this.undo() }, 'undo').name('Undo');
@@ -451,13 +452,28 @@ export class GaitSession {
    * a quadruped, otherwise on every quadruped.
    */
   private async setQuadrupedGait(name: string): Promise<void> {
-    const pattern = QUADRUPED_GAITS[name];
-    if (!pattern) return;
     if (this.target.character !== 'quadruped') {
       this.controls.editType = 'quadruped';
       this.folder.controllersRecursive().forEach((c) => c.updateDisplay());
       await this.load({ id: 'all', character: 'quadruped' });
     }
+    if (name in QUADRUPED_GAIT_FILES) {
+      const file = QUADRUPED_GAIT_FILES[name];
+      let gait: GaitFile;
+      try {
+        gait = file ? await this.gaitFromServer(file) : await this.preset('quadruped');
+      } catch (error) {
+        this.overlay.message(`The ${name} gait could not be loaded: ${error instanceof Error ? error.message : String(error)}`, 'problem');
+        return;
+      }
+      this.remember();
+      this.gait = gait;
+      this.apply(gait);
+      this.refresh();
+      return;
+    }
+    const pattern = QUADRUPED_PATTERNS[name];
+    if (!pattern) return;
     const params: Record<string, ParamValue> = {};
     for (const l of this.diagramLegs) {
       const timing = pattern[l.leg];
@@ -468,6 +484,13 @@ export class GaitSession {
     this.remember();
     this.edit(params, true);
     this.refresh();
+  }
+
+  /** A gait file shipped beside the page (public/), checked like any gait from outside. */
+  private async gaitFromServer(file: string): Promise<GaitFile> {
+    const response = await fetch(new URL(file, document.baseURI));
+    if (!response.ok) throw new Error(`${file}: HTTP ${response.status}`);
+    return parseGait(await response.json(), this.schema);
   }
 
   // ---- sharing ----

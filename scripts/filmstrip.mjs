@@ -95,23 +95,25 @@ try {
   const from = to.map((v, i) => v + side[i]);
   await page.evaluate(([a, b]) => window.gaitlab.view(a, b), [from, to]);
 
+  const [w, h] = args.type === 'biped' ? [260, 380] : [400, 300];  // one frame, px
   const shots = [];
   for (let f = 0; f < frames; ++f) {
     if (f > 0) await stepBy(every);
     await page.waitForTimeout(900); // the follow camera eases onto the character
     const at = await page.evaluate((id) => window.gaitlab.screenPosition(id), subject.id);
     if (!at) throw new Error('the character is not on screen');
-    const w = 260, h = 380;
-    const clip = { x: Math.max(0, at.x - w / 2), y: Math.max(0, at.y - h * 0.32), width: w, height: h };
+    // The character's screen position is its root leg frame's: the biped's trunk, the quadruped's
+    // front leg frame, whose body trails behind it (to the right, seen from its left side).
+    const clip = { x: Math.max(0, at.x - w * (args.type === 'biped' ? 0.5 : 0.28)), y: Math.max(0, at.y - h * 0.32), width: w, height: h };
     shots.push({ png: (await page.screenshot({ clip })).toString('base64'), t: simSteps / 120 });
     process.stderr.write(`frame ${f + 1}/${frames} at ${(simSteps / 120).toFixed(3)} s\n`);
   }
 
   // One row of frames, labelled, drawn by the browser itself.
   const sheet = await context.newPage();
-  await sheet.setViewportSize({ width: 260 * frames, height: 410 });
+  await sheet.setViewportSize({ width: w * frames, height: h + 30 });
   await sheet.setContent(`<body style="margin:0;display:flex;font:13px system-ui;background:#fff">${shots
-    .map((s) => `<figure style="margin:0;width:260px"><img src="data:image/png;base64,${s.png}" style="display:block">` +
+    .map((s) => `<figure style="margin:0;width:${w}px"><img src="data:image/png;base64,${s.png}" style="display:block">` +
       `<figcaption style="text-align:center;padding:4px">t = ${s.t.toFixed(2)} s</figcaption></figure>`)
     .join('')}</body>`);
   fs.mkdirSync(path.dirname(out), { recursive: true });

@@ -2,7 +2,7 @@
 //
 // Where the physics time goes (docs/parallel.md, "Where the physics time goes"): about 70 % of a
 // crowd's physics step is the solver's iterations, each a sweep over every constraint row (a joint
-// has 5-9 rows, a contact point 2), 40 iterations, twice per fixed step. Bullet solves each row
+// has 5-9 rows, a contact point 2), 10 iterations, twice per fixed step. Bullet solves each row
 // through a function pointer, with scalar arithmetic, in pool order. This solver replaces only that
 // sweep (solveSingleIteration), and computes exactly what Bullet's computes:
 //

@@ -76,9 +76,7 @@ World::World(int contactPool)
                                                           solver_.get(), config_.get())) {
 #endif
   dynamics_->setGravity(btVector3(0, -9.81f, 0));
-  // A character's trunk weighs 30-60 times its foot; sequential impulses converge slowly across
-  // such mass ratios (see kPhysicsSubsteps for the rest of the story).
-  dynamics_->getSolverInfo().m_numIterations = kSolverIterations;
+  dynamics_->getSolverInfo().m_numIterations = kSolverIterations;  // see world.h
 
   // Ground: a static plane at y = 0; setTerrain adds slopes or bumps (physics/terrain.h).
   shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0));

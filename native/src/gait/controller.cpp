@@ -93,7 +93,6 @@ void Controller::setParams(const GaitParams& params) {
 void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   const int segments = static_cast<int>(m_.segments.size());
   for (int i = 0; i < segments; ++i) torques[i].setZero();
-  dt_ = dt;
 
   // Heading frame (correction of defect 7: nothing in world axes) and the goal (steering).
   const BodyState& root = s.segments[m_.legFrames[0]];
@@ -142,13 +141,14 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   for (size_t l = 0; l < m_.legs.size(); ++l) {
     const body::Leg& leg = m_.legs[l];
     const int li = static_cast<int>(l);
-    if (player_.leg(li).events & kLiftOff)
+    if (player_.leg(li).events & kLiftOff) {
       liftOff_[l] = jointPivot(leg.foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
-    if (player_.leg(li).events & kLiftOff) swingTargets_[l].valid = false;
+      swingTargets_[l].valid = false;
+    }
     if (player_.leg(li).stance)
       ++stanceIn[legFrameIndex(leg)];
     else
-      swingLeg(li, s, yaw, velocityH, torques);
+      swingLeg(li, s, dt, yaw, velocityH, torques);
   }
 
   if (frames > 1) {
@@ -312,8 +312,8 @@ void Controller::stanceLeg(int l, const CharacterState& s, double yaw, const Vec
   limitToSupport(l, s, load, torques);
 }
 
-void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vector3d& velocityH,
-                          Vector3d* torques) {
+void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
+                          const Vector3d& velocityH, Vector3d* torques) {
   const body::Leg& leg = m_.legs[l];
   const LegGeometry& g = geometry_[l];
   const JointGains& k = params_.gains;
@@ -355,11 +355,11 @@ void Controller::swingLeg(int l, const CharacterState& s, double yaw, const Vect
   Vector3d thighRate = frame.angularVelocity;
   double kneeRate = 0.0;
   const double share = k.swingTargetRate;
-  if (last.valid && dt_ > 0 && share > 0) {
+  if (last.valid && dt > 0 && share > 0) {
     const Eigen::AngleAxisd turn(thighWanted * last.thigh.conjugate());
-    const Vector3d rate = clampNorm(turn.axis() * wrapAngle(turn.angle()) / dt_, kMaxSwingRate);
+    const Vector3d rate = clampNorm(turn.axis() * wrapAngle(turn.angle()) / dt, kMaxSwingRate);
     thighRate += share * (rate - thighRate);
-    kneeRate = share * std::clamp((ik.kneeFlexion - last.knee) / dt_, -kMaxSwingRate, kMaxSwingRate);
+    kneeRate = share * std::clamp((ik.kneeFlexion - last.knee) / dt, -kMaxSwingRate, kMaxSwingRate);
   }
   last = {thighWanted, ik.kneeFlexion, true};
   torques[leg.upper] += orientationPd(k.hipKp, k.hipKd, thigh.orientation, thighWanted,

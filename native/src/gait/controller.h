@@ -71,8 +71,9 @@ class Controller {
   // `supported`: the force is this foot's ground force in the whole-body stance (bodyStance).
   void stanceLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& force,
                  double load, bool supported, Eigen::Vector3d* torques);
-  void swingLeg(int leg, const CharacterState& s, double yaw, const Eigen::Vector3d& velocity,
-                Eigen::Vector3d* torques);
+  // `dt`: the step, for the swing targets' rates (swingTargetRate).
+  void swingLeg(int leg, const CharacterState& s, double dt, double yaw,
+                const Eigen::Vector3d& velocity, Eigen::Vector3d* torques);
   int legFrameIndex(const body::Leg& leg) const;  // 0 front/only, 1 back
   Eigen::Vector3d jointPivot(int segment, const CharacterState& s) const;  // world, now
   DofChain legChain(int leg, const CharacterState& s) const;
@@ -105,7 +106,6 @@ class Controller {
     bool valid = false;  // false on the first step of a swing
   };
   std::vector<SwingTargets> swingTargets_;
-  double dt_ = 0;
   double desiredHeading_;
   Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gravity_{0, -9.81, 0};

@@ -121,7 +121,7 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
   lastTime_ = time;
 }
 
-ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime) const {
+ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft) const {
   ObjectiveTerms t;
   const double goalTravel = goalSpeed_ * measuredTime_;
   const double travel = (travel_ - goalTravel) / std::max(std::abs(goalTravel), 1.0);
@@ -130,13 +130,15 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime) const {
   t.fv = velocityCount_ ? velocitySum_ / velocityCount_ : 0.0;
   t.fa = accelSamples_ ? accelSum_ / accelSamples_ : 0.0;
   t.fr = frameSamples_ ? rotationSum_ / frameSamples_ : 0.0;
+  t.ft = ft;
   t.fell = fell;
   t.seconds = fell ? fallTime : lastTime_;
   if (fell) {
     const double left = std::clamp((settings_.seconds - fallTime) / settings_.seconds, 0.0, 1.0);
     t.fall = settings_.fallPenalty * (1.0 + left);
   }
-  t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr + t.fall;
+  t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr +
+            settings_.wt * t.ft + t.fall;
   return t;
 }
 
@@ -177,10 +179,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
     recorder.add(s.time(), frames.data(), static_cast<int>(frames.size()));
   };
   const sim::WalkResult r = sim::runWalk(w);
-  ObjectiveTerms t = recorder.finish(r.fell, r.fallTime);
-  t.ft = timingDeviation(r.dutyMeasured, r.dutyConfig);
-  t.total += settings.wt * t.ft;
-  return t;
+  return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig));
 }
 
 double timingDeviation(const std::vector<double>& measured, const std::vector<double>& configured) {

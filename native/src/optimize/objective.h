@@ -122,8 +122,9 @@ class ObjectiveRecorder {
   // The state after the step that ended at `time` (s, the simulation's clock).
   void add(double time, const LegFrameSample* frames, int count);
 
-  // Terms over what was recorded; `fell` at `fallTime` adds the fall penalty.
-  ObjectiveTerms finish(bool fell, double fallTime) const;
+  // Terms over what was recorded; `fell` at `fallTime` adds the fall penalty. `ft`: the
+  // episode's footfall timing deviation (timingDeviation, from the walk's duty factors).
+  ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0) const;
 
   double goalHeading(double time) const { return startHeading_ + settings_.turnRate * time; }
 

@@ -32,7 +32,7 @@ import type { SimClient } from '../sim/sim-client';
  * trigger, the phase of lift-off, and the duty factor) laid over the gait being edited; no gait
  * has been tuned for them, and they fall.
  */
-const QUADRUPED_GAIT_FILES: Record<string, string> = { walk: 'presets/quadruped-walk.json', trot: '' };
+const QUADRUPED_GAIT_FILES: Record<string, string> = { walk: 'presets/quadruped-walk.json', trot: 'presets/quadruped.json' };
 const QUADRUPED_PATTERNS: Record<string, Record<string, [number, number]>> = {
   // Lateral pairs together.
   pace: { frontLeft: [0, 0.6], backLeft: [0, 0.6], frontRight: [0.5, 0.6], backRight: [0.5, 0.6] },
@@ -458,10 +458,9 @@ export class GaitSession {
       await this.load({ id: 'all', character: 'quadruped' });
     }
     if (name in QUADRUPED_GAIT_FILES) {
-      const file = QUADRUPED_GAIT_FILES[name];
       let gait: GaitFile;
       try {
-        gait = file ? await this.gaitFromServer(file) : await this.preset('quadruped');
+        gait = await this.gaitFromServer(QUADRUPED_GAIT_FILES[name]);
       } catch (error) {
         this.overlay.message(`The ${name} gait could not be loaded: ${error instanceof Error ? error.message : String(error)}`, 'problem');
         return;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <vector>
 
 #include "sim/thread_pool.h"
@@ -54,4 +56,36 @@ TEST(ThreadPool, ChunkTRunsOnThreadT) {
     }
     EXPECT_EQ(owner[i], expected);
   }
+}
+
+TEST(ThreadPool, ForEachVisitsEveryItemOnceWhateverTheThreadCount) {
+  for (int threads = 1; threads <= 4; ++threads) {
+    ThreadPool pool(threads);
+    for (int n : {0, 1, 2, 3, 12, 100}) {
+      std::vector<std::atomic<int>> hits(n);
+      for (int loop = 0; loop < 50; ++loop) pool.forEach(n, [&](int i) { hits[i].fetch_add(1); });
+      for (int i = 0; i < n; ++i) EXPECT_EQ(hits[i].load(), 50) << "threads " << threads << " item " << i;
+    }
+  }
+}
+
+// The point of forEach (the physics shards in full mode): a thread held up in one item does not
+// hold up the others, which the remaining thread takes. With fixed contiguous chunks, the item
+// held up here would wait for items of its own chunk that nobody else may run.
+TEST(ThreadPool, ForEachLetsTheFreeThreadTakeTheRestWhileOneIsHeldUp) {
+  ThreadPool pool(2);
+  constexpr int kItems = 12;
+  std::atomic<int> done{0};
+  bool othersFinishedMeanwhile = false;
+  pool.forEach(kItems, [&](int i) {
+    if (i == 0) {
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (done.load() < kItems - 1 && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::yield();
+      othersFinishedMeanwhile = done.load() == kItems - 1;
+    } else {
+      done.fetch_add(1);
+    }
+  });
+  EXPECT_TRUE(othersFinishedMeanwhile);
 }

@@ -48,13 +48,9 @@ Generation Optimizer::step() {
   for (int i = 0; i < k; ++i) gait::fromVector(options_.character, points[i], &candidates[i]);
 
   std::vector<ObjectiveTerms> results(k);
-  std::atomic<int> next{0};
-  // One task per evaluation: each thread takes the next candidate until none are left (falls
-  // end episodes early, so evaluations differ in cost). Results land in their own slot.
-  pool_.parallelFor(pool_.size(), [&](int, int, int) {
-    for (int i = next.fetch_add(1); i < k; i = next.fetch_add(1))
-      results[i] = score(candidates[i]);
-  });
+  // One task per evaluation, each thread taking the next until none are left (falls end
+  // episodes early, so evaluations differ in cost). Results land in their own slot.
+  pool_.forEach(k, [&](int i) { results[i] = score(candidates[i]); });
   evaluations_ += k;
   ++generation_;
 

@@ -316,10 +316,12 @@ void Simulation::step(int steps) {
     }
     const auto t1 = Clock::now();
     applyDrag();
-    // Physics: the shards one after another, or (full mode) as a second parallel-for. Each shard
-    // computes the same thing either way; only the thread that runs it differs.
+    // Physics: the shards one after another, or (full mode) each shard taken by the next free
+    // thread (ThreadPool::forEach: shards differ in cost, and on a shared machine a thread may
+    // start late; docs/parallel.md). Each shard computes the same thing either way; only the
+    // thread that runs it differs.
     if (mode_ == Mode::Full) {
-      pool_.parallelFor(shards(), physicsChunk);
+      pool_.forEach(shards(), [this](int shard) { stepShard(shard); });
     } else {
       physicsChunk(0, shards(), 0);
     }

@@ -35,7 +35,8 @@ enum class Crowd { Bipeds, Quadrupeds, Mixed };
 //   Controller  the thesis's mode (§3.1, §4.1): the controller loop is a parallel-for over the
 //               characters in T contiguous chunks, the first N mod T one larger (§4.3); physics
 //               is serial;
-//   Full        the controller loop as above, then the physics shards as a second parallel-for.
+//   Full        the controller loop as above, then the physics shards in parallel, each shard
+//               taken by the next free thread (ThreadPool::forEach).
 enum class Mode { Serial = 0, Controller = 1, Full = 2 };
 const char* modeName(Mode mode);
 bool parseMode(const std::string& name, Mode* out);

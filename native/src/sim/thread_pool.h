@@ -42,6 +42,21 @@ class ThreadPool {
   // Chunk `t` of `n` items split over `threads` (thesis §4.3).
   static Range chunk(int n, int threads, int t);
 
+  // Calls fn(i) once for every item i of [0, n), each item taken by whichever thread of the loop
+  // is free next (an atomic counter, per loop): a load balance at the grain of one item, for
+  // items of unequal or unpredictable cost (the physics shards, the optimiser's episodes). A
+  // thread that starts late takes fewer items instead of holding up the loop. Which thread runs
+  // an item must not change what the item computes.
+  template <class F>
+  void forEach(int n, F&& fn) {
+    std::atomic<int> next{0};
+    parallelFor(size(), [&](int, int, int) {
+      for (int i = next.fetch_add(1, std::memory_order_relaxed); i < n;
+           i = next.fetch_add(1, std::memory_order_relaxed))
+        fn(i);
+    });
+  }
+
   // Calls fn(begin, end, t) for each chunk t of the size() contiguous chunks of [0, n), normally
   // on thread t (the caller is thread 0; see "late workers" above), and returns when every chunk
   // is done.

@@ -10,7 +10,7 @@ export interface Point {
   runs: number;
   controller_ms: Stat;
   physics_ms: Stat;
-  step_ms: Stat & { p50: number; p99: number; max: number };
+  step_ms: Stat & { p50: number; p99: number; max: number; p99_median_over_runs?: number };
   controller_us_per_character: number;
   memory: { heap_bytes: number; scene_heap_bytes: number; rss_bytes: number | null };
   state_hash: string;
@@ -33,6 +33,7 @@ export function toCsv(doc: BenchDocument): string;
 export function seriesKey(p: Point): string;
 export function curves(doc: BenchDocument, legs: Point['legs']): Map<string, Point[]>;
 export function fitLine(xs: number[], ys: number[]): { a: number; b: number; r2: number };
+export function capacityProbeSizes(points: Point[], cap?: number): number[];
 export function capacity(points: Point[]): {
   measured: number; fitted: number | null; extrapolated: boolean; line: { a: number; b: number; r2: number };
 };

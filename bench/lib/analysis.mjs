@@ -31,6 +31,7 @@ export const CSV_COLUMNS = [
   'legs', 'characters', 'threads', 'mode', 'shards', 'steps', 'runs',
   'controller_ms_mean', 'controller_ms_sd', 'physics_ms_mean', 'physics_ms_sd',
   'step_ms_mean', 'step_ms_sd', 'step_ms_p50', 'step_ms_p99', 'step_ms_max',
+  'step_ms_p99_median_over_runs',
   'controller_us_per_character', 'heap_bytes', 'scene_heap_bytes', 'rss_bytes', 'state_hash',
   'deterministic',
 ];
@@ -42,7 +43,8 @@ export function toCsv(doc) {
     p.controller_ms.mean.toFixed(6), p.controller_ms.sd.toFixed(6),
     p.physics_ms.mean.toFixed(6), p.physics_ms.sd.toFixed(6),
     p.step_ms.mean.toFixed(6), p.step_ms.sd.toFixed(6), p.step_ms.p50.toFixed(6),
-    p.step_ms.p99.toFixed(6), p.step_ms.max.toFixed(6), p.controller_us_per_character.toFixed(4),
+    p.step_ms.p99.toFixed(6), p.step_ms.max.toFixed(6),
+    p.step_ms.p99_median_over_runs?.toFixed(6) ?? '', p.controller_us_per_character.toFixed(4),
     p.memory.heap_bytes, p.memory.scene_heap_bytes, p.memory.rss_bytes ?? '', p.state_hash,
     p.deterministic,
   ].join(','));
@@ -97,6 +99,19 @@ export function capacity(points) {
   const fitted = line.b > 0 ? Math.max(0, Math.floor((STEP_BUDGET_MS - line.a) / line.b)) : null;
   const largest = points.length ? Math.max(...points.map((p) => p.characters)) : 0;
   return { measured, fitted, extrapolated: fitted !== null && fitted > largest, line };
+}
+
+/**
+ * Crowd sizes at which to measure a curve's capacity when its linear trend lies beyond the largest
+ * crowd measured: the trend's figure and 10 % either side, none above `cap` (what the runtime's
+ * memory holds). Measuring them turns the extrapolation into a measurement (bench/run.mjs).
+ */
+export function capacityProbeSizes(points, cap = Infinity) {
+  const c = capacity(points);
+  if (!c.extrapolated) return [];
+  const sizes = [Math.floor(0.9 * c.fitted), c.fitted, Math.ceil(1.1 * c.fitted)].map((n) => Math.min(n, cap));
+  const largest = Math.max(...points.map((p) => p.characters));
+  return [...new Set(sizes)].filter((n) => n > largest);
 }
 
 /** The point of `doc` matching the given fields, or undefined. */

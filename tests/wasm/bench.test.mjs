@@ -43,6 +43,7 @@ test('native and WASM `bench --json` print documents valid against bench/schema.
     for (const p of doc.points) {
       assert.ok(p.deterministic, 'every run of a point ends in the same state');
       assert.equal(p.frames.step_ms.mean.length, 6);
+      assert.ok(p.step_ms.p99_median_over_runs <= p.step_ms.max, 'the tail of the per-step medians lies within the steps');
       // The same crowd gives the same state in every mode and thread count.
       const same = doc.points.filter((q) => q.legs === p.legs && q.characters === p.characters);
       assert.ok(same.every((q) => q.state_hash === p.state_hash), `state differs across modes: ${p.legs} legs x ${p.characters}`);
@@ -92,6 +93,11 @@ test('bench/run.mjs --tiny: native, WASM in Node and in Chromium, a valid result
     const results = JSON.parse(fs.readFileSync(path.join(out, json), 'utf8'));
     assert.deepEqual(validate(results, 'results'), []);
     assert.deepEqual([...new Set(results.runs.map((d) => d.machine.runtime))], ['native', 'wasm-node', 'wasm-browser']);
+    // Every runtime measured its capacity beyond the grid (capped at 5 characters for --tiny).
+    for (const runtime of ['native', 'wasm-node', 'wasm-browser']) {
+      const probes = results.runs.filter((d) => d.machine.runtime === runtime && d.points.every((p) => p.characters === 5 && p.mode === 'full'));
+      assert.deepEqual(probes.map((d) => d.inputs.legs).sort(), [[2], [4]], `${runtime}: a capacity probe per leg count`);
+    }
     const browser = results.runs.find((d) => d.machine.runtime === 'wasm-browser');
     assert.equal(browser.machine.cross_origin_isolated, true);
     const svgs = files.filter((f) => f.endsWith('.svg'));
@@ -101,6 +107,8 @@ test('bench/run.mjs --tiny: native, WASM in Node and in Chromium, a valid result
     for (const f of svgs) assert.match(fs.readFileSync(path.join(out, f), 'utf8'), /^<svg [^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"[\s\S]*<\/svg>\s*$/);
     const md = fs.readFileSync(path.join(out, files.find((f) => f.endsWith('.md'))), 'utf8');
     assert.match(md, /Goals \(issue 4\)/);
+    assert.match(md, /\| native \| biped \| 2T \| \d+ \| 5: [\d.]+ ms \|/, 'the capacity table lists the probe');
+    assert.match(md, /spikes that recur in every run/);
     assert.match(md, /Same state in every mode and thread count: yes/);
   } finally {
     fs.rmSync(out, { recursive: true, force: true });

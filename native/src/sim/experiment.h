@@ -8,7 +8,10 @@
 //   per frame      for each step index f, mean and sd over the runs (thesis Figures 5.1, 5.2);
 //   per execution  mean and sd over every step of every run (Figures 5.3-5.5, Tables 6.1-6.3),
 //                  plus the median, 99th percentile and maximum step (the thesis saw single-frame
-//                  spikes it could not explain, §6.3).
+//                  spikes it could not explain, §6.3), and the 99th percentile of the per-frame
+//                  medians: a spike of the simulation's own recurs at its step in every run and
+//                  counts there, one from outside (another process, the host) hits one run and
+//                  does not.
 // Used by the `gaitlab bench` command (api/cli_bench.cpp) and the browser's performance page
 // (through the C API), so that every runtime measures with the same code.
 #pragma once
@@ -48,6 +51,9 @@ struct PointResult {
   // Per execution, milliseconds.
   Stat controller, physics, step;
   double stepMedian = 0, stepP99 = 0, stepMax = 0;
+  // 99th percentile over step indices of each step's median over the runs (see above; with one
+  // run it is stepP99).
+  double stepP99MedianOverRuns = 0;
   // Per frame (spec.frames), milliseconds, one entry per step index.
   std::vector<Stat> frameController, framePhysics, frameStep;
   // Memory after the last run with its simulation still alive: bytes the allocator hands out
@@ -63,6 +69,10 @@ PointResult runPoint(const PointSpec& spec);
 
 // Nearest-rank percentile p (0-100) of `samples`.
 double percentile(std::vector<double>& samples, double p);  // sorts `samples`
+
+// The 99th percentile over step indices of each step's median over the runs; `samples` is laid
+// out [run][step]. A spike that recurs at its step in every run counts, one in a single run not.
+double p99OfMediansOverRuns(const std::vector<double>& samples, size_t runs, size_t steps);
 
 // Allocator and process memory, for the memory figures.
 int64_t heapInUse();

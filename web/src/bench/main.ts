@@ -238,10 +238,11 @@ function drawTables(): void {
   }
   const rows = doc.points.map((p) => [legsName(p.legs), p.mode, p.threads + (p.threads > cores ? ' ⚠' : ''), p.characters,
     p.controller_ms.mean.toFixed(4), p.controller_ms.sd.toFixed(4), p.physics_ms.mean.toFixed(3), p.step_ms.mean.toFixed(3),
-    p.step_ms.sd.toFixed(3), p.step_ms.p99.toFixed(3), p.controller_us_per_character.toFixed(2),
+    p.step_ms.sd.toFixed(3), p.step_ms.p99.toFixed(3), p.step_ms.p99_median_over_runs?.toFixed(3) ?? '–',
+    p.controller_us_per_character.toFixed(2),
     (p.memory.heap_bytes / 1048576).toFixed(1), p.deterministic ? 'yes' : 'NO']);
   tablesSection.append(el('h3', {}, 'Every point (ms per step; ⚠ = more threads than logical cores)'), table(
-    ['legs', 'mode', 'threads', 'N', 'controller', 'sd', 'physics', 'step', 'sd', 'p99', 'µs/char', 'heap MB', 'same state'], rows, 2));
+    ['legs', 'mode', 'threads', 'N', 'controller', 'sd', 'physics', 'step', 'sd', 'p99', 'p99 of per-step medians', 'µs/char', 'heap MB', 'same state'], rows, 2));
 }
 
 // ---- running ----------------------------------------------------------------------------------

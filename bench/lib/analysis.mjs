@@ -102,16 +102,30 @@ export function capacity(points) {
 }
 
 /**
- * Crowd sizes at which to measure a curve's capacity when its linear trend lies beyond the largest
- * crowd measured: the trend's figure and 10 % either side, none above `cap` (what the runtime's
- * memory holds). Measuring them turns the extrapolation into a measurement (bench/run.mjs).
+ * The crowd size at which to measure a curve next, to find its real-time capacity by measurement
+ * rather than by extrapolation (bench/run.mjs), or null once it is found. `points` are every point
+ * of the curve measured so far. Until a crowd over budget has been measured, the next size is the
+ * linear trend's capacity (at least 10 % beyond the largest crowd within budget); then it is
+ * interpolated between the largest crowd within budget and the smallest one over it (kept inside
+ * the middle 60 % of that bracket), until the two are within `tolerance` of each other. Never
+ * above `cap` (what the runtime's memory holds).
  */
-export function capacityProbeSizes(points, cap = Infinity) {
-  const c = capacity(points);
-  if (!c.extrapolated) return [];
-  const sizes = [Math.floor(0.9 * c.fitted), c.fitted, Math.ceil(1.1 * c.fitted)].map((n) => Math.min(n, cap));
-  const largest = Math.max(...points.map((p) => p.characters));
-  return [...new Set(sizes)].filter((n) => n > largest);
+export function nextCapacityProbe(points, { cap = Infinity, tolerance = 0.05 } = {}) {
+  const within = points.filter((p) => p.step_ms.mean <= STEP_BUDGET_MS);
+  const lo = within.length ? within.reduce((a, b) => (b.characters > a.characters ? b : a)) : null;
+  const over = points.filter((p) => p.step_ms.mean > STEP_BUDGET_MS && (!lo || p.characters > lo.characters));
+  const hi = over.length ? over.reduce((a, b) => (b.characters < a.characters ? b : a)) : null;
+  if (!lo) return null;  // not even the smallest crowd runs in real time
+  if (!hi) {
+    if (lo.characters >= cap) return null;
+    const c = capacity(points).fitted ?? 0;
+    return Math.min(cap, Math.max(c, Math.ceil(1.1 * lo.characters)));
+  }
+  const gap = hi.characters - lo.characters;
+  if (gap <= Math.max(1, tolerance * lo.characters)) return null;
+  const t = (STEP_BUDGET_MS - lo.step_ms.mean) / (hi.step_ms.mean - lo.step_ms.mean);
+  const next = Math.round(lo.characters + Math.min(0.8, Math.max(0.2, t)) * gap);
+  return Math.min(hi.characters - 1, Math.max(lo.characters + 1, next));
 }
 
 /** The point of `doc` matching the given fields, or undefined. */

@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { toCsv, validate } from '../../bench/lib/analysis.mjs';
+import { STEP_BUDGET_MS, nextCapacityProbe, toCsv, validate } from '../../bench/lib/analysis.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const native = path.join(root, 'build/native/gaitlab');
@@ -107,10 +107,40 @@ test('bench/run.mjs --tiny: native, WASM in Node and in Chromium, a valid result
     for (const f of svgs) assert.match(fs.readFileSync(path.join(out, f), 'utf8'), /^<svg [^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"[\s\S]*<\/svg>\s*$/);
     const md = fs.readFileSync(path.join(out, files.find((f) => f.endsWith('.md'))), 'utf8');
     assert.match(md, /Goals \(issue 4\)/);
-    assert.match(md, /\| native \| biped \| 2T \| \d+ \| 5: [\d.]+ ms \|/, 'the capacity table lists the probe');
+    assert.match(md, /\| native \| biped \| 2T \| \*\*5 \([\d.]+ ms\)\*\* \| – \| 5 \|/, 'the capacity table lists the probe');
     assert.match(md, /spikes that recur in every run/);
     assert.match(md, /Same state in every mode and thread count: yes/);
   } finally {
     fs.rmSync(out, { recursive: true, force: true });
   }
+});
+
+// The capacity search of bench/run.mjs against step-time models whose capacity is known: it must
+// bracket the capacity within 5 % in a few probes, also when the grid's linear trend is wrong.
+for (const [name, stepMs, capacity] of [
+  ['linear', (n) => 0.3 + 0.02 * n, Math.floor((STEP_BUDGET_MS - 0.3) / 0.02)],
+  // Cost per character grows with the crowd (e.g. caches): the grid's trend overestimates.
+  ['superlinear', (n) => 0.02 * n + 0.00002 * n * n, 316],
+  ['never in real time', () => 9, 0],
+]) {
+  test(`nextCapacityProbe finds the capacity of a ${name} step time`, () => {
+    const point = (n) => ({ characters: n, step_ms: { mean: stepMs(n) } });
+    const points = [1, 20, 50, 100].map(point);
+    let probes = 0;
+    for (let n; (n = nextCapacityProbe(points, { cap: 1000 })) !== null; ++probes) {
+      assert.ok(probes < 8, `more than 8 probes: ${points.map((p) => p.characters)}`);
+      assert.ok(!points.some((p) => p.characters === n), `measures ${n} twice`);
+      points.push(point(n));
+    }
+    const within = Math.max(0, ...points.filter((p) => p.step_ms.mean <= STEP_BUDGET_MS).map((p) => p.characters));
+    assert.ok(within <= capacity, `${within} reported within budget, capacity ${capacity}`);
+    if (capacity > 0) assert.ok(within >= 0.95 * capacity, `${within} is not within 5 % of ${capacity}`);
+  });
+}
+
+test('nextCapacityProbe stops at the largest crowd the benchmark builds', () => {
+  const points = [1, 20, 50, 100].map((n) => ({ characters: n, step_ms: { mean: 0.001 * n } }));
+  assert.equal(nextCapacityProbe(points, { cap: 300 }), 300);
+  points.push({ characters: 300, step_ms: { mean: 0.3 } });
+  assert.equal(nextCapacityProbe(points, { cap: 300 }), null);
 });

@@ -87,6 +87,15 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
     await page.close();
   });
 
+  it('refuses a crowd larger than a simulation holds, before measuring anything', { timeout: TIMEOUT }, async () => {
+    const page = await browser.newPage();
+    await page.goto(`${server.url}bench.html?legs=4&characters=1,911&threads=1&modes=serial&steps=8&runs=1&autorun=1`, { waitUntil: 'load' });
+    await page.waitForFunction(() => window.gaitlabBench.state === 'error', null, { timeout: TIMEOUT });
+    assert.match(await page.evaluate(() => window.gaitlabBench.error), /911 quadrupeds is more than a simulation holds \(910\)/);
+    assert.equal(await page.evaluate(() => window.gaitlabBench.document?.points?.length ?? 0), 0, 'no point was measured');
+    await page.close();
+  });
+
   it('is linked from the demo page', async () => {
     const html = fs.readFileSync(path.join(repoDir, 'web', 'index.html'), 'utf8');
     assert.match(html, /href="bench\.html"/);

@@ -92,6 +92,33 @@ TEST(Modes, CrowdIsOnAGridWellApartInContiguousShards) {
   EXPECT_EQ(lastShard, 2);
 }
 
+// The benchmark's crowd walks (issue 4: numbers only mean something for characters that walk):
+// every character advances at about its type's cruise speed and none falls, although the crowd
+// starts out of step (each character at its own gait phase).
+TEST(Modes, TheBenchmarkCrowdWalksOutOfStep) {
+  for (Crowd crowd : {Crowd::Bipeds, Crowd::Quadrupeds}) {
+    Simulation sim(2, 1, 4);
+    sim.crowdScene(crowd, 16, 4.0);
+    sim.setMode(Mode::Full);
+    std::set<long> phases;
+    std::vector<double> startZ;
+    for (int i = 0; i < sim.characterCount(); ++i) {
+      phases.insert(std::lround(sim.controller(i).player().phase() * 100));
+      startZ.push_back(sim.character(i).segmentState(0).position.z());
+    }
+    EXPECT_EQ(phases.size(), 16u) << "every character starts at its own phase";
+    constexpr double kSeconds = 10;
+    sim.step(static_cast<int>(kSeconds * 120));
+    const double cruise = Simulation::cruiseSpeed(crowd == Crowd::Bipeds ? Kind::Biped : Kind::Quadruped);
+    for (int i = 0; i < sim.characterCount(); ++i) {
+      EXPECT_FALSE(sim.fallen(i)) << "character " << i;
+      const double speed = (sim.character(i).segmentState(0).position.z() - startZ[i]) / kSeconds;
+      EXPECT_GT(speed, 0.7 * cruise) << "character " << i;
+      EXPECT_LT(speed, 1.3 * cruise) << "character " << i;
+    }
+  }
+}
+
 TEST(Modes, SameStateHashForEveryModeAndThreadCount) {
   // A mixed crowd with props thrown in, so that props cross between shards too.
   std::string reference;

@@ -71,6 +71,7 @@ for (const [args, message] of [
   [['--mode', 'parallel'], /--mode: 'parallel' is not serial, controller or full/],
   [['--steps', 'x'], /--steps: 'x' is not a number/],
   [['--json', '--csv'], /exclusive/],
+  [['--legs', '4', '--characters', '911'], /911 quadrupeds is more than a simulation holds \(910\)/],
 ]) {
   test(`bench refuses ${args.join(' ')}`, () => {
     for (const [cmd, pre] of [[native, []], [process.execPath, ['bench/wasm.mjs']]]) {

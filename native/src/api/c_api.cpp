@@ -360,10 +360,13 @@ const char* gl_bench_machine(void) {
   return g_string.c_str();
 }
 
+int gl_bench_max_characters(int legs) { return gaitlab::sim::maxCharacters(legs); }
+
 const char* gl_bench_point(int legs, int characters, int threads, int mode, int steps, int runs,
                            int shards, double spacing, uint32_t seed, int frames) {
   g_string.clear();
-  if ((legs != 0 && legs != 2 && legs != 4) || characters < 1 || characters > 2000 || mode < 0 ||
+  if ((legs != 0 && legs != 2 && legs != 4) || characters < 1 ||
+      characters > gaitlab::sim::maxCharacters(legs) || mode < 0 ||
       mode > 2 || steps < 1 || runs < 1 || shards < 1 || shards > 64 || !(spacing >= 2.5))
     return g_string.c_str();
   gaitlab::sim::PointSpec s;

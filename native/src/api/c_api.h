@@ -207,9 +207,13 @@ GL_EXPORT double gl_sim_ground_height(void* sim, double x, double z);
 // The machine object of the document ("machine").
 GL_EXPORT const char* gl_bench_machine(void);
 
+// The largest crowd of `legs` (2, 4, or 0 for mixed) one simulation holds.
+GL_EXPORT int gl_bench_max_characters(int legs);
+
 // Runs one point and returns its element of "points". `legs` 2, 4, or 0 (mixed); `mode` 0
 // serial, 1 controller, 2 full; `threads` clamped to [1, GL_MAX_THREADS]; `frames` non-zero
-// keeps per-frame statistics. Returns "" for arguments out of range.
+// keeps per-frame statistics. Returns "" for arguments out of range (more characters than
+// gl_bench_max_characters included).
 GL_EXPORT const char* gl_bench_point(int legs, int characters, int threads, int mode, int steps,
                                      int runs, int shards, double spacing, uint32_t seed,
                                      int frames);

@@ -2,6 +2,7 @@
 
 #include "api/options.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -290,6 +291,13 @@ int runBenchCli(int argc, char** argv) {
     modes.push_back(m);
   }
   if (!parseList(charactersText, 1, 2000, &characters, &error)) return benchError("--characters: " + error);
+  for (int l : legs) {
+    // One simulation's render buffer bounds its bodies (Simulation::kRenderCapacity).
+    const int most = sim::maxCharacters(l), largest = *std::max_element(characters.begin(), characters.end());
+    if (largest > most)
+      return benchError("--characters: " + std::to_string(largest) + " " + (l == sim::kMixed ? std::string("mixed characters") : l == 2 ? "bipeds" : "quadrupeds") +
+                        " is more than a simulation holds (" + std::to_string(most) + ")");
+  }
   // The WASM build pre-starts 4 pthreads (c_api.h, GL_MAX_THREADS); natively the same limit
   // keeps the two comparable.
   if (!parseList(threadsText, 1, 5, &threads, &error)) return benchError("--threads: " + error);

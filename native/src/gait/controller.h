@@ -54,6 +54,8 @@ class Controller {
   void update(double dt, const CharacterState& state, Eigen::Vector3d* torques);
 
   const GaitPlayer& player() const { return player_; }
+  // Restarts the gait at phase Φ (a crowd whose members start out of step).
+  void setPhase(double phase) { player_.reset(phase); }
   double desiredHeading() const { return desiredHeading_; }
   const Eigen::Vector3d& desiredVelocity() const { return desiredVelocity_; }  // heading frame
 

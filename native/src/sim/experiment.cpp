@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 
 #if defined(__EMSCRIPTEN__)
 #include <malloc.h>
@@ -79,7 +80,21 @@ int64_t residentSetBytes() {
   return kb < 0 ? -1 : kb * 1024;
 }
 
+int maxCharacters(int legs) {
+  const int biped = static_cast<int>(body::makeBiped().segments.size());
+  const int quadruped = static_cast<int>(body::makeQuadruped().segments.size());
+  // A mixed crowd alternates, starting with a biped.
+  const int perPair = biped + quadruped;
+  const int cap = Simulation::kRenderCapacity;
+  if (legs == kBiped) return cap / biped;
+  if (legs == kQuadruped) return cap / quadruped;
+  return 2 * (cap / perPair) + (cap % perPair >= biped ? 1 : 0);
+}
+
 PointResult runPoint(const PointSpec& spec) {
+  if (spec.characters > maxCharacters(spec.legs))
+    throw std::invalid_argument("a simulation holds at most " + std::to_string(maxCharacters(spec.legs)) +
+                                " characters of this kind");
   PointResult r;
   r.spec = spec;
   r.shards = std::max(1, std::min(spec.shards, spec.characters));

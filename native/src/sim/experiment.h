@@ -64,7 +64,12 @@ struct PointResult {
   bool deterministic = true;  // every run ended in the same state
 };
 
-// Runs one point of the experiment.
+// The largest crowd of a leg count one simulation holds (its render buffer's bodies,
+// Simulation::kRenderCapacity).
+int maxCharacters(int legs);
+
+// Runs one point of the experiment. Throws std::invalid_argument for a crowd larger than
+// maxCharacters.
 PointResult runPoint(const PointSpec& spec);
 
 // Nearest-rank percentile p (0-100) of `samples`.

@@ -259,7 +259,10 @@ void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
     // Contiguous chunks of the grid per shard, split like the thesis's thread chunks (§4.3).
     int shard = 0;
     while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
-    spawnCharacter(k, x, z, 0.0, shard);
+    if (spawnCharacter(k, x, z, 0.0, shard) < 0) break;
+    gait::Controller& c = agents_.back()->controller;
+    c.setGoal({cruiseSpeed(k), 0.0});
+    c.setPhase(std::fmod(i * 0.6180339887498949, 1.0));  // golden-ratio sequence: evenly spread
   }
   publish();
 }

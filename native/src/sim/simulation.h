@@ -67,8 +67,14 @@ class Simulation {
   // The thesis experiment's crowd (§4.1, Figures 4.5, 4.6): `characters` bipeds, quadrupeds or
   // both (alternating) on a square grid `spacing` metres apart, centred on the origin, all facing
   // +z; no props. Shard s gets the s-th contiguous chunk of the grid (rows), so neighbours share
-  // a world.
+  // a world. Every character walks forward at its type's cruise speed (the benchmark measures
+  // characters that walk), and the crowd starts out of step: character i at gait phase
+  // frac(i / golden ratio), as a crowd would be, rather than 100 characters whose feet all strike
+  // on the same step (docs/parallel.md, the p99).
   void crowdScene(Crowd crowd, int characters, double spacing);
+  // The speed each type's preset is tuned and benchmarked for (bench/walking.mjs; the demo's
+  // start goals, web/src/sim/sim.worker.ts): a 0.49 m dog walks slower than a 1.8 m human.
+  static double cruiseSpeed(Kind kind) { return kind == Kind::Biped ? 1.0 : 0.4; }
 
   void setMode(Mode mode) { mode_ = mode; }
   // Bullet's own constraint sweep instead of the faster one that computes the same

@@ -8,6 +8,7 @@ import type { BenchCommand, BenchEvent } from './protocol';
 /** The benchmark part of the C API (c_api.h, "Benchmark"). */
 interface BenchModule extends GaitlabModule {
   _gl_bench_machine(): number;
+  _gl_bench_max_characters(legs: number): number;
   _gl_bench_point(legs: number, characters: number, threads: number, mode: number, steps: number,
     runs: number, shards: number, spacing: number, seed: number, frames: number): number;
 }
@@ -34,6 +35,13 @@ async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<voi
   const m = module;
   post({ type: 'machine', machine: JSON.parse(m.UTF8ToString(m._gl_bench_machine())) });
   const { inputs } = command;
+  // Refuse a crowd larger than a simulation holds before measuring anything.
+  for (const p of command.grid) {
+    const most = m._gl_bench_max_characters(p.legs === 'mixed' ? 0 : p.legs);
+    if (p.characters > most) {
+      throw new Error(`${p.characters} ${p.legs === 'mixed' ? 'mixed characters' : p.legs === 2 ? 'bipeds' : 'quadrupeds'} is more than a simulation holds (${most})`);
+    }
+  }
   for (let i = 0; i < command.grid.length; i++) {
     // Let a 'cancel' message in between points.
     await yieldToMessages();

@@ -58,10 +58,10 @@ export function buildGrid(inputs: BenchInputs): PointSpec[] {
 
 /**
  * Relative cost of a point, for the time-left estimate: the physics dominates and grows with the
- * bodies simulated (a quadruped has 11 segments, a biped 7), over the threads that share it.
+ * bodies simulated (a quadruped has 18 segments, a biped 7), over the threads that share it.
  */
 export function pointCost(p: PointSpec, inputs: Pick<BenchInputs, 'steps' | 'runs'>): number {
-  const bodies = p.legs === 2 ? 7 : p.legs === 4 ? 11 : 9;
+  const bodies = p.legs === 2 ? 7 : p.legs === 4 ? 18 : 12.5;
   const parallel = p.mode === 'full' ? p.threads : 1;
   return (inputs.steps * inputs.runs * (0.2 + p.characters * bodies)) / parallel;
 }

@@ -4,10 +4,12 @@
 // ROUNDS times, first on the machine as it is and then with a competing process that is busy for
 // BUSY ms and idle for IDLE ms in turn (a stand-in for the other work of a shared machine or a
 // browser's own threads). Prints, per build and condition, the ranges over rounds of the 2-thread
-// speedup, the 2-thread step time and the p99/median of the 2-thread step.
+// step times on 1 and 2 threads, the 2-thread speedup and the p99/median of the 2-thread step.
 //
 //   node bench/contention.mjs OLD_GAITLAB [NEW_GAITLAB=build/native/gaitlab] [LEGS=4] [ROUNDS=3]
-//                             [BUSY=3] [IDLE=5]
+//                             [BUSY=3] [IDLE=5] [--quiet-only]
+//
+// --quiet-only skips the competing process (to compare two builds' cost alone).
 //
 // OLD_GAITLAB is a binary built from another commit, e.g.
 //   git worktree add /tmp/old HEAD~1 && cmake -S /tmp/old -B /tmp/old/build -G Ninja && ninja -C /tmp/old/build gaitlab
@@ -22,7 +24,8 @@ if (args.length < 1) {
   console.error('usage: node bench/contention.mjs OLD_GAITLAB [NEW_GAITLAB] [LEGS=4] [ROUNDS=3] [BUSY=3] [IDLE=5]');
   process.exit(2);
 }
-const [oldBin, newBin = path.join(root, 'build/native/gaitlab'), legs = '4', rounds = '3', busy = '3', idle = '5'] = args;
+const quietOnly = args.includes('--quiet-only');
+const [oldBin, newBin = path.join(root, 'build/native/gaitlab'), legs = '4', rounds = '3', busy = '3', idle = '5'] = args.filter((a) => a !== '--quiet-only');
 const builds = { old: path.resolve(oldBin), new: path.resolve(newBin) };
 
 function bench(bin) {
@@ -34,6 +37,7 @@ function bench(bin) {
   const [one, two] = [at(1), at(2)];
   return {
     speedup: one.step_ms.mean / two.step_ms.mean,
+    step1: one.step_ms.mean,
     step2: two.step_ms.mean,
     tail2: two.step_ms.p99 / two.step_ms.p50,
     hash: two.state_hash,
@@ -54,9 +58,9 @@ const range = (xs, digits) => {
 
 console.log(`# ${os.cpus()[0].model}, ${os.cpus().length} logical cores, load ${os.loadavg()[0].toFixed(2)}, ${new Date().toISOString()}`);
 console.log(`# ${legs === '4' ? 'quadrupeds' : legs === '2' ? 'bipeds' : legs}, 100 characters, full mode, 240 steps x 3 runs, ${rounds} rounds; median (min–max) over rounds`);
-console.log('| condition | build | 2-thread speedup | 2-thread step ms | p99/median, 2 threads | state hash |');
-console.log('|---|---|---|---|---|---|');
-for (const condition of ['machine as it is', `competing process (busy ${busy} ms, idle ${idle} ms)`]) {
+console.log('| condition | build | 1-thread step ms | 2-thread step ms | 2-thread speedup | p99/median, 2 threads | state hash |');
+console.log('|---|---|---|---|---|---|---|');
+for (const condition of ['machine as it is', ...(quietOnly ? [] : [`competing process (busy ${busy} ms, idle ${idle} ms)`])]) {
   const load = condition.startsWith('competing') ? startLoad() : null;
   const samples = { old: [], new: [] };
   for (let r = 0; r < Number(rounds); ++r) {
@@ -68,7 +72,7 @@ for (const condition of ['machine as it is', `competing process (busy ${busy} ms
   load?.kill();
   for (const b of ['old', 'new']) {
     const s = samples[b];
-    console.log(`| ${condition} | ${b} | ${range(s.map((x) => x.speedup), 2)} | ${range(s.map((x) => x.step2), 2)} | ${range(s.map((x) => x.tail2), 2)} | ${[...new Set(s.map((x) => x.hash))].join(', ')} |`);
+    console.log(`| ${condition} | ${b} | ${range(s.map((x) => x.step1), 2)} | ${range(s.map((x) => x.step2), 2)} | ${range(s.map((x) => x.speedup), 2)} | ${range(s.map((x) => x.tail2), 2)} | ${[...new Set(s.map((x) => x.hash))].join(', ')} |`);
   }
 }
 console.log(`# load at the end ${os.loadavg()[0].toFixed(2)}`);

@@ -1,12 +1,12 @@
 #include "physics/character.h"
 
-#include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cassert>
 
 #include "physics/convert.h"
+#include "physics/joint.h"
 
 namespace gaitlab::physics {
 
@@ -67,9 +67,11 @@ Character::Character(World& world, const body::Morphology& morphology,
       h->setLimit(static_cast<btScalar>(-j.upper[0]), static_cast<btScalar>(-j.lower[0]));
       c = h;
     } else {
-      auto* g = new btGeneric6DofSpring2Constraint(
-          *parent, *child, parent->getWorldTransform().inverse() * jointFrame,
-          child->getWorldTransform().inverse() * jointFrame, RO_XYZ);
+      // Limit rows only near a limit (physics/joint.h).
+      auto* g = new Joint(*parent, *child, parent->getWorldTransform().inverse() * jointFrame,
+                          child->getWorldTransform().inverse() * jointFrame,
+                          static_cast<btScalar>(kFixedStep / kPhysicsSubsteps),
+                          world.dynamics().getSolverInfo().m_erp);
       g->setLinearLowerLimit(btVector3(0, 0, 0));
       g->setLinearUpperLimit(btVector3(0, 0, 0));
       btVector3 lo(0, 0, 0), hi(0, 0, 0);  // DOFs the joint lacks stay locked

@@ -11,8 +11,9 @@
 //
 // --quiet-only skips the competing process (to compare two builds' cost alone).
 //
-// OLD_GAITLAB is a binary built from another commit, e.g.
-//   git worktree add /tmp/old HEAD~1 && cmake -S /tmp/old -B /tmp/old/build -G Ninja && ninja -C /tmp/old/build gaitlab
+// OLD_GAITLAB is a binary built from another commit, e.g. (then /tmp/old/build/native/gaitlab)
+//   git worktree add /tmp/old HEAD~1 && cd /tmp/old && bash scripts/setup.sh &&
+//   cmake -S native -B build/native -G Ninja -DCMAKE_BUILD_TYPE=Release && ninja -C build/native gaitlab
 import { spawn, spawnSync } from 'node:child_process';
 import os from 'node:os';
 import path from 'node:path';

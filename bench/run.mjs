@@ -10,20 +10,20 @@
 //   node bench/run.mjs --only native,node,chromium   a subset of the runtimes
 //   node bench/run.mjs --out DIR  somewhere else than bench/results
 //   node bench/run.mjs --tiny     a few seconds per runtime: checks the pipeline (tests/wasm)
+//   node bench/run.mjs --readme   also replace the README's measured block (between the
+//                                 <!-- bench:begin --> and <!-- bench:end --> markers) with this run's
 //
 // Real-time capacity: the largest crowd of each full-mode curve that still runs in real time is
 // searched for by measurement beyond the grid (capacity probes: nextCapacityProbe in
 // bench/lib/analysis.mjs, up to MAX_PROBES crowd sizes per curve, until the largest crowd within
 // budget and the smallest over it are within 5 % of each other), not extrapolated.
-//   node bench/run.mjs --readme   also replace the README's measured block (between the
-//                                 <!-- bench:begin --> and <!-- bench:end --> markers) with this run's
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import {
-  STEP_BUDGET_MS, capacity, curves, find, legsName, nextCapacityProbe, ratioTable, seriesKey, speedup, validate,
+  STEP_BUDGET_MS, capacity, capacityBracket, curves, find, legsName, nextCapacityProbe, ratioTable, seriesKey, speedup, validate,
 } from './lib/analysis.mjs';
 import { barChart, lineChart } from './lib/svg.mjs';
 
@@ -252,9 +252,7 @@ const capacityOf = (d, legs, key) => {
   if (!list) return null;
   const probes = probeDocs.filter((p) => p.machine.runtime === d.machine.runtime).flatMap((p) => curves(p, legs).get(key) ?? []);
   const all = [...list, ...probes];
-  const within = all.filter((p) => p.step_ms.mean <= STEP_BUDGET_MS).sort((a, b) => b.characters - a.characters)[0] ?? null;
-  const over = all.filter((p) => p.step_ms.mean > STEP_BUDGET_MS && (!within || p.characters > within.characters)).sort((a, b) => a.characters - b.characters)[0] ?? null;
-  return { ...capacity(all), trend: capacity(list), within, over, probes: probes.sort((a, b) => a.characters - b.characters) };
+  return { ...capacity(all), ...capacityBracket(all), trend: capacity(list), probes: probes.sort((a, b) => a.characters - b.characters) };
 };
 const crowdAt = (p) => (p ? `${p.characters} (${p.step_ms.mean.toFixed(2)} ms)` : '–');
 {

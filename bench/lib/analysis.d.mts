@@ -33,6 +33,7 @@ export function toCsv(doc: BenchDocument): string;
 export function seriesKey(p: Point): string;
 export function curves(doc: BenchDocument, legs: Point['legs']): Map<string, Point[]>;
 export function fitLine(xs: number[], ys: number[]): { a: number; b: number; r2: number };
+export function capacityBracket(points: Point[]): { within: Point | null; over: Point | null };
 export function nextCapacityProbe(points: Point[], options?: { cap?: number; tolerance?: number }): number | null;
 export function capacity(points: Point[]): {
   measured: number; fitted: number | null; extrapolated: boolean; line: { a: number; b: number; r2: number };

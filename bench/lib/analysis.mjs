@@ -102,6 +102,18 @@ export function capacity(points) {
 }
 
 /**
+ * The measured bracket of a curve's capacity: `within`, the largest crowd whose mean step fits the
+ * budget, and `over`, the smallest larger crowd that does not (each a point, or null).
+ */
+export function capacityBracket(points) {
+  const fits = (p) => p.step_ms.mean <= STEP_BUDGET_MS;
+  const within = points.filter(fits).reduce((a, b) => (!a || b.characters > a.characters ? b : a), null);
+  const over = points.filter((p) => !fits(p) && (!within || p.characters > within.characters))
+    .reduce((a, b) => (!a || b.characters < a.characters ? b : a), null);
+  return { within, over };
+}
+
+/**
  * The crowd size at which to measure a curve next, to find its real-time capacity by measurement
  * rather than by extrapolation (bench/run.mjs), or null once it is found. `points` are every point
  * of the curve measured so far. Until a crowd over budget has been measured, the next size is the
@@ -111,10 +123,7 @@ export function capacity(points) {
  * above `cap` (what the runtime's memory holds).
  */
 export function nextCapacityProbe(points, { cap = Infinity, tolerance = 0.05 } = {}) {
-  const within = points.filter((p) => p.step_ms.mean <= STEP_BUDGET_MS);
-  const lo = within.length ? within.reduce((a, b) => (b.characters > a.characters ? b : a)) : null;
-  const over = points.filter((p) => p.step_ms.mean > STEP_BUDGET_MS && (!lo || p.characters > lo.characters));
-  const hi = over.length ? over.reduce((a, b) => (b.characters < a.characters ? b : a)) : null;
+  const { within: lo, over: hi } = capacityBracket(points);
   if (!lo) return null;  // not even the smallest crowd runs in real time
   if (!hi) {
     if (lo.characters >= cap) return null;

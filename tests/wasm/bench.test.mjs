@@ -27,6 +27,8 @@ test('native and WASM `bench --json` print documents valid against bench/schema.
   for (const [cmd, pre] of [[native, []], [process.execPath, ['bench/wasm.mjs']]]) {
     const r = run(cmd, [...pre, ...tiny, '--json']);
     assert.equal(r.status, 0, r.stderr);
+    // An untimed warm-up comes first (sim::warmUp: a WASM engine's optimising tier), then the grid.
+    assert.match(r.stderr, /^bench: warming up \(untimed\)\nbench 1\//m);
     const doc = JSON.parse(r.stdout);
     assert.deepEqual(validate(doc), []);
     docs.push(doc);

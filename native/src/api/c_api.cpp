@@ -362,6 +362,11 @@ const char* gl_bench_machine(void) {
 
 int gl_bench_max_characters(int legs) { return gaitlab::sim::maxCharacters(legs); }
 
+void gl_bench_warm_up(int legs, int threads) {
+  if (legs != 0 && legs != 2 && legs != 4) return;
+  gaitlab::sim::warmUp({legs}, threads < 1 ? 1 : threads > GL_MAX_THREADS ? GL_MAX_THREADS : threads);
+}
+
 const char* gl_bench_point(int legs, int characters, int threads, int mode, int steps, int runs,
                            int shards, double spacing, uint32_t seed, int frames) {
   g_string.clear();

@@ -207,6 +207,10 @@ GL_EXPORT double gl_sim_ground_height(void* sim, double x, double z);
 // The machine object of the document ("machine").
 GL_EXPORT const char* gl_bench_machine(void);
 
+// Untimed warm-up before a grid (sim::warmUp): 10 characters of `legs` (2, 4, or 0 for mixed),
+// 1 s, full mode on `threads` threads.
+GL_EXPORT void gl_bench_warm_up(int legs, int threads);
+
 // The largest crowd of `legs` (2, 4, or 0 for mixed) one simulation holds.
 GL_EXPORT int gl_bench_max_characters(int legs);
 

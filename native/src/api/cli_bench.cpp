@@ -339,6 +339,8 @@ int runBenchCli(int argc, char** argv) {
     std::printf("%-6s %5s %3s %-10s %12s %12s %12s %10s %10s\n", "legs", "N", "T", "mode",
                 "controller", "physics", "step", "step p99", "us/char");
   }
+  std::fprintf(stderr, "bench: warming up (untimed)\n");
+  sim::warmUp(legs, *std::max_element(threads.begin(), threads.end()));
   for (size_t i = 0; i < grid.size(); ++i) {
     const sim::PointSpec& s = grid[i];
     std::fprintf(stderr, "bench %zu/%zu: legs %s, %d characters, %d threads, %s\n", i + 1,

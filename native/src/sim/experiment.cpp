@@ -80,6 +80,19 @@ int64_t residentSetBytes() {
   return kb < 0 ? -1 : kb * 1024;
 }
 
+void warmUp(const std::vector<int>& legs, int threads) {
+  for (int l : legs) {
+    PointSpec spec;
+    spec.legs = l;
+    spec.characters = 10;
+    spec.threads = threads;
+    spec.mode = Mode::Full;
+    spec.steps = 120;
+    spec.runs = 1;
+    runPoint(spec);
+  }
+}
+
 int maxCharacters(int legs) {
   const int biped = static_cast<int>(body::makeBiped().segments.size());
   const int quadruped = static_cast<int>(body::makeQuadruped().segments.size());

@@ -68,6 +68,14 @@ struct PointResult {
 // Simulation::kRenderCapacity).
 int maxCharacters(int legs);
 
+// Untimed: simulates a crowd of 10 characters of each leg count in `legs` for 1 s on `threads`
+// threads (full mode), before a grid is measured. A WebAssembly engine starts a module in a
+// baseline compiler and recompiles hot functions with its optimising one as they run (V8: Liftoff,
+// then TurboFan): without this the first point measured, the grid's smallest crowd, ran the
+// baseline code and took several times as long per step as later points, which skewed the
+// thesis's 1-character ratios (Tables 6.1-6.3). Natively it only warms the caches.
+void warmUp(const std::vector<int>& legs, int threads);
+
 // Runs one point of the experiment. Throws std::invalid_argument for a crowd larger than
 // maxCharacters.
 PointResult runPoint(const PointSpec& spec);

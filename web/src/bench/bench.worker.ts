@@ -9,6 +9,7 @@ import type { BenchCommand, BenchEvent } from './protocol';
 interface BenchModule extends GaitlabModule {
   _gl_bench_machine(): number;
   _gl_bench_max_characters(legs: number): number;
+  _gl_bench_warm_up(legs: number, threads: number): void;
   _gl_bench_point(legs: number, characters: number, threads: number, mode: number, steps: number,
     runs: number, shards: number, spacing: number, seed: number, frames: number): number;
 }
@@ -42,6 +43,11 @@ async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<voi
       throw new Error(`${p.characters} ${p.legs === 'mixed' ? 'mixed characters' : p.legs === 2 ? 'bipeds' : 'quadrupeds'} is more than a simulation holds (${most})`);
     }
   }
+  // Untimed, so that the engine has compiled the hot code with its optimising tier before the
+  // first point is timed (sim::warmUp).
+  post({ type: 'status', message: 'warming up (untimed)' });
+  const warmThreads = Math.max(...command.grid.map((p) => p.threads));
+  for (const legs of new Set(command.grid.map((p) => p.legs))) m._gl_bench_warm_up(legs === 'mixed' ? 0 : legs, warmThreads);
   for (let i = 0; i < command.grid.length; i++) {
     // Let a 'cancel' message in between points.
     await yieldToMessages();

@@ -313,6 +313,8 @@ function start(): void {
     if (e.type === 'machine') {
       current.machine = { ...e.machine, cross_origin_isolated: crossOriginIsolated, hardware_concurrency: cores } as unknown as BenchDocument['machine'];
       showDevice(e.machine);
+    } else if (e.type === 'status') {
+      status.textContent = `${e.message[0].toUpperCase()}${e.message.slice(1)}…`;
     } else if (e.type === 'point') {
       current.points.push(e.point as unknown as Point);
       done += costs[e.index];

@@ -32,6 +32,8 @@ export type BenchCommand =
 
 export type BenchEvent =
   | { type: 'machine'; machine: Record<string, unknown> }
+  /** What the worker is doing before the first point (the untimed warm-up). */
+  | { type: 'status'; message: string }
   /** `point` is the JSON element of "points" for grid[index]. */
   | { type: 'point'; index: number; point: Record<string, unknown>; seconds: number }
   | { type: 'done'; cancelled: boolean }

@@ -170,6 +170,12 @@ describe('gaitlab WASM module in Node', () => {
     }
   });
 
+  it('gives each kind its cruise speed, the demo start goal (a dog walks slower than a human)', () => {
+    assert.equal(Module._gl_cruise_speed(KIND.biped), 1.0);
+    assert.equal(Module._gl_cruise_speed(KIND.quadruped), 0.4);
+    assert.equal(Module._gl_cruise_speed(KIND.box), 0);
+  });
+
   it('spawns single things and refuses unknown kinds', () => {
     const sim = Module._gl_sim_create(1, 3);
     try {

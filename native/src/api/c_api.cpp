@@ -40,6 +40,11 @@ int gl_sim_spawn(void* s, int kind, double x, double z, double heading) {
   return sim(s)->spawn(static_cast<Kind>(kind), x, z, heading);
 }
 
+double gl_cruise_speed(int kind) {
+  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return 0.0;
+  return Simulation::cruiseSpeed(static_cast<Kind>(kind));
+}
+
 void gl_sim_demo_scene(void* s, int characters) { sim(s)->demoScene(characters); }
 
 void gl_sim_step(void* s, int steps) { sim(s)->step(steps); }

@@ -38,6 +38,10 @@ enum { GL_KIND_BIPED = 0, GL_KIND_QUADRUPED = 1, GL_KIND_BOX = 2 };
 // Returns its id (>= 0), or -1 if the kind is unknown or the render buffer is full.
 GL_EXPORT int gl_sim_spawn(void* sim, int kind, double x, double z, double heading);
 
+// The speed a character of `kind` (GL_KIND_BIPED or GL_KIND_QUADRUPED) is tuned and benchmarked
+// for, m/s (sim::Simulation::cruiseSpeed): the demo's start goal; 0 for any other kind.
+GL_EXPORT double gl_cruise_speed(int kind);
+
 // The foundation's demo scene: `characters` figures on a grid plus a few boxes.
 GL_EXPORT void gl_sim_demo_scene(void* sim, int characters);
 

@@ -40,9 +40,6 @@ class Character {
   // Applied as an equal and opposite pair: +τ on the segment, −τ on its parent (the original
   // applied it to the child only, creating angular momentum from nothing: REFERENCE.md defect 3).
   void applyJointTorques(const Eigen::Vector3d* torques);
-  // The Bullet constraints of the joints, in the order of their child segments.
-  int jointCount() const { return static_cast<int>(joints_.size()); }
-  const btTypedConstraint& joint(int k) const { return *joints_[k]; }
 
   // Marks foot `leg`'s body so that contact detection can find its flag (World::updateContacts).
   void setFootContactFlag(int leg, bool* flag);

@@ -72,8 +72,8 @@ class Simulation {
   // frac(i / golden ratio), as a crowd would be, rather than 100 characters whose feet all strike
   // on the same step (docs/parallel.md, the p99).
   void crowdScene(Crowd crowd, int characters, double spacing);
-  // The speed each type's preset is tuned and benchmarked for (bench/walking.mjs; the demo's
-  // start goals, web/src/sim/sim.worker.ts): a 0.49 m dog walks slower than a 1.8 m human.
+  // The speed each type's preset is tuned and benchmarked for (bench/walking.mjs; also the demo's
+  // start goals, through gl_cruise_speed): a 0.49 m dog walks slower than a 1.8 m human.
   static double cruiseSpeed(Kind kind) { return kind == Kind::Biped ? 1.0 : 0.4; }
 
   void setMode(Mode mode) { mode_ = mode; }

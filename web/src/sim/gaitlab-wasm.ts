@@ -14,6 +14,7 @@ export interface GaitlabModule {
   _gl_sim_destroy(sim: number): void;
   _gl_sim_spawn(sim: number, kind: number, x: number, z: number, heading: number): number;
   _gl_sim_demo_scene(sim: number, characters: number): void;
+  _gl_cruise_speed(kind: number): number;
   _gl_sim_step(sim: number, steps: number): void;
   _gl_sim_time(sim: number): number;
   _gl_sim_step_index(sim: number): number;

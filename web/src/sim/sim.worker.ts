@@ -85,13 +85,13 @@ const SPACING_Z = 3;
 let gridColumns = 1;
 let nextSlot = 0;
 /**
- * The goal each type starts with: the lower of the speeds its preset is benchmarked at
- * (bench/walking.mjs; a 0.49 m dog walks slower than a 1.8 m human). A goal given to all
- * characters replaces both.
+ * The goal each type starts with: its cruise speed (gl_cruise_speed, the speed its preset is
+ * benchmarked at; a 0.49 m dog walks slower than a 1.8 m human), set once the module is loaded.
+ * A goal given to all characters replaces both.
  */
 const lastGoals: Record<CharacterType, { speed: number; turn: number }> = {
-  biped: { speed: 1.0, turn: 0 },
-  quadruped: { speed: 0.4, turn: 0 },
+  biped: { speed: 0, turn: 0 },
+  quadruped: { speed: 0, turn: 0 },
 };
 /**
  * The gait last given to every character of a type (setParams with id 'all'): characters added
@@ -389,6 +389,7 @@ async function init(initial: SimOptions): Promise<void> {
     printErr: (text) => console.warn(`[gaitlab] ${text}`),
     onAbort: (what) => fail(new Error(`the WASM module aborted: ${errorMessage(what)}`)),
   });
+  for (const kind of CHARACTER_TYPES) lastGoals[kind] = { speed: module._gl_cruise_speed(Kind[kind]), turn: 0 };
   newScene();
   schedule();
   statsTimer = setInterval(reportStats, STATS_INTERVAL_MS);

@@ -10,6 +10,7 @@
 #endif
 
 #include "physics/convert.h"
+#include "physics/discrete_world.h"
 #include "physics/solver.h"
 
 namespace gaitlab::physics {
@@ -72,8 +73,8 @@ World::World(int contactPool)
       dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<ReservingSolver>()),
-      dynamics_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
-                                                          solver_.get(), config_.get())) {
+      dynamics_(std::make_unique<DiscreteWorld>(dispatcher_.get(), broadphase_.get(),
+                                                solver_.get(), config_.get())) {
 #endif
   dynamics_->setGravity(btVector3(0, -9.81f, 0));
   dynamics_->getSolverInfo().m_numIterations = kSolverIterations;  // see world.h
@@ -205,15 +206,18 @@ double World::terrainHeight(double x, double z, double fallback) const {
   const btVector3 from(static_cast<btScalar>(x), 100, static_cast<btScalar>(z));
   const btVector3 to(static_cast<btScalar>(x), -100, static_cast<btScalar>(z));
   // The relief lies above the plane wherever it exists (terrain.h), so its hit is the ground.
-  for (btRigidBody* g : {relief_, ground_}) {
-    if (!g) continue;
+  if (relief_) {
     btCollisionWorld::ClosestRayResultCallback hit(from, to);
     btCollisionWorld::rayTestSingle(btTransform(btQuaternion::getIdentity(), from),
-                                    btTransform(btQuaternion::getIdentity(), to), g,
-                                    g->getCollisionShape(), g->getWorldTransform(), hit);
+                                    btTransform(btQuaternion::getIdentity(), to), relief_,
+                                    relief_->getCollisionShape(), relief_->getWorldTransform(), hit);
     if (hit.hasHit()) return hit.m_hitPointWorld.y();
   }
-  return fallback;
+  // The plane is horizontal: its height is its origin's, where the ray (y from 100 to -100)
+  // crosses it. Bullet's ray test against a plane shape cuts two triangles out of it first, and
+  // it ran for every character and step (the controller's and the fall test's ground queries).
+  const btScalar plane = ground_->getWorldTransform().getOrigin().y();
+  return plane < from.y() && plane > to.y() ? plane : fallback;
 }
 
 void World::setTerrain(std::shared_ptr<const Terrain> terrain) {

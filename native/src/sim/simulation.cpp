@@ -271,6 +271,9 @@ void Simulation::stepShard(int shard) {
   for (Agent* a : shardAgents_[shard]) std::fill(std::begin(a->footContact), std::end(a->footContact), false);
   worlds_[shard]->step();
   worlds_[shard]->updateContacts();
+  // The fall test, here rather than in updateFallen: in full mode it then runs on the shard's
+  // thread instead of in the serial tail of the step (a ground ray cast per character).
+  for (Agent* a : shardAgents_[shard]) a->down = hasFallen(*a->body, *worlds_[shard]);
 }
 
 int Simulation::nearestShard(double x, double z, int fallback) const {
@@ -533,7 +536,7 @@ void Simulation::updateFallen() {
   std::vector<int> toReset;
   for (int i = 0; i < characterCount(); ++i) {
     Agent& a = *agents_[i];
-    if (!hasFallen(*this, i)) {
+    if (!a.down) {
       a.fallenSince = -1;
       continue;
     }

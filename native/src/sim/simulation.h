@@ -94,8 +94,9 @@ class Simulation {
   }
   Mode mode() const { return mode_; }
   int shards() const { return static_cast<int>(worlds_.size()); }
-  // The shard character i lives in.
+  // The shard character i lives in, and that shard's physics world.
   int shardOf(int i) const { return agents_[i]->shard; }
+  const physics::World& world(int shard) const { return *worlds_[shard]; }
   // Timing of the last fixed step.
   const StepTiming& lastStep() const { return lastStep_; }
   // How many times the controller has run for character i (each step must run it exactly once).
@@ -213,6 +214,7 @@ class Simulation {
     const physics::World* world;
     int id = -1;
     Kind kind = Kind::Biped;
+    bool down = false;        // hasFallen after the last step (set in its shard's task)
     double fallenSince = -1;  // simulated time it was first seen fallen; -1 = standing
     int shard = 0;
     uint64_t updates = 0;

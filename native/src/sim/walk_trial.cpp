@@ -13,11 +13,14 @@ constexpr double kPi = 3.14159265358979323846;
 }
 
 bool hasFallen(const Simulation& sim, int c) {
-  const physics::Character& ch = sim.character(c);
+  return hasFallen(sim.character(c), sim.world(sim.shardOf(c)));
+}
+
+bool hasFallen(const physics::Character& ch, const physics::World& world) {
   const body::Morphology& m = ch.morphology();
   for (int lf : m.legFrames) {
     const physics::SegmentState s = ch.segmentState(lf);
-    const double ground = sim.groundHeight(s.position.x(), s.position.z());
+    const double ground = world.terrainHeight(s.position.x(), s.position.z());
     if (s.position.y() - ground < 0.5 * m.segments[lf].center.y()) return true;
     const Eigen::Vector3d up = s.orientation * Eigen::Vector3d::UnitY();
     if (up.y() < std::cos(60.0 * kPi / 180.0)) return true;

@@ -147,3 +147,15 @@ test('nextCapacityProbe stops at the largest crowd the benchmark builds', () => 
   points.push({ characters: 300, step_ms: { mean: 0.3 } });
   assert.equal(nextCapacityProbe(points, { cap: 300 }), null);
 });
+
+test('bench/ab-wasm.mjs steps the same crowd with two builds in turns and reports equal hashes for one build', () => {
+  const r = run(process.execPath, ['bench/ab-wasm.mjs', 'build/wasm', 'build/wasm', '4', '2', '3']);
+  assert.equal(r.status, 0, r.stderr);
+  const hashes = [...r.stdout.matchAll(/state hash ([0-9a-f]{16})/g)].map((m) => m[1]);
+  assert.equal(hashes.length, 2, r.stdout);
+  assert.equal(hashes[0], hashes[1]);
+  assert.match(r.stdout, /new\/old, median over 3 turns: \d+\.\d{3}/);
+  const bad = run(process.execPath, ['bench/ab-wasm.mjs', 'build/wasm', 'build/wasm', '3']);
+  assert.equal(bad.status, 2);
+  assert.match(bad.stderr, /usage/);
+});

@@ -84,7 +84,10 @@ Character::Character(World& world, const body::Morphology& morphology,
       g->setAngularUpperLimit(hi);
       c = g;
     }
-    world.dynamics().addConstraint(c, true);  // no collision between jointed segments
+    // Jointed segments never collide: the collision filter already keeps all of a character's
+    // segments apart (world.h, kCharacterMask). Bullet's own switch for it (true here) would give
+    // each segment a list of its neighbours, searched for every contact pair in every sub-step.
+    world.dynamics().addConstraint(c, false);
     joints_.push_back(c);
   }
 }

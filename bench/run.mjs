@@ -52,10 +52,11 @@ if (!flag('--full')) FRAMES.steps = 240;
 if (flag('--tiny')) Object.assign(FRAMES, { characters: [3], steps: 10, runs: 2 });
 
 const grid = flag('--full') ? FULL : flag('--tiny') ? TINY : REDUCED;
-// The largest crowd a capacity probe builds: a simulation holds at most 910 quadrupeds (its
-// render buffer), and the WebAssembly heap is fixed at 256 MB (about 600 quadrupeds). The tiny
-// grid only checks that the probes run.
-const PROBE_CAP = flag('--tiny') ? 5 : 600;
+// The largest crowd a capacity probe builds: the WebAssembly heap is fixed at 256 MB, and a crowd
+// takes about 0.17 MB a biped and 0.33 MB a quadruped (the memory table), so 1200 bipeds or 600
+// quadrupeds (within the render buffer's 2340 and 910). The tiny grid only checks that the probes
+// run.
+const probeCap = (legs) => (flag('--tiny') ? 5 : legs === 2 ? 1200 : 600);
 const MAX_PROBES = 8;
 const runtimes = value('--only', 'native,node,chromium').split(',');
 const outDir = path.resolve(value('--out', path.join(root, 'bench', 'results')));
@@ -118,7 +119,7 @@ for (const runtime of runtimes) {
   for (const legs of grid.legs) {
     for (const threads of grid.threads) {
       const points = [...(curves(gridDoc, legs).get(`full ${threads}T`) ?? [])];
-      for (let probe = 1, n; probe <= MAX_PROBES && (n = nextCapacityProbe(points, { cap: PROBE_CAP })) !== null; ++probe) {
+      for (let probe = 1, n; probe <= MAX_PROBES && (n = nextCapacityProbe(points, { cap: probeCap(legs) })) !== null; ++probe) {
         const g = { legs: [legs], characters: [n], threads: [threads], modes: ['full'], steps: grid.steps, runs: grid.runs, frames: false };
         process.stderr.write(`bench: ${runtime}, capacity probe ${probe}/${MAX_PROBES} at most: ${n} ${legsName(legs)}s, full ${threads}T\n`);
         const doc = await measure(runtime, g);
@@ -335,7 +336,7 @@ for (const legs of [2, 4]) {
 for (const legs of [2, 4]) {
   const c = capacityOf(browser, legs, 'full 2T');
   goals.push([`real-time capacity at 120 Hz, Chromium, 2 threads (full), ${legsName(legs)}s`, legs === 2 ? '≥ 400 (aim 500)' : '≥ 150 (aim 200)',
-    c ? `${c.within?.characters ?? 0} measured (${c.within ? `${f(c.within.step_ms.mean, 2)} ms a step` : 'none within budget'}; ${c.over ? `${crowdAt(c.over)} is over` : `no larger crowd measured${c.within?.characters >= PROBE_CAP ? `: ${PROBE_CAP} is the most the benchmark builds` : ''}`}); the grid's linear trend said ${c.trend.fitted ?? '–'}` : '–']);
+    c ? `${c.within?.characters ?? 0} measured (${c.within ? `${f(c.within.step_ms.mean, 2)} ms a step` : 'none within budget'}; ${c.over ? `${crowdAt(c.over)} is over` : `no larger crowd measured${c.within?.characters >= probeCap(legs) ? `: ${probeCap(legs)} is the most the benchmark builds` : ''}`}); the grid's linear trend said ${c.trend.fitted ?? '–'}` : '–']);
 }
 {
   let worst = null;

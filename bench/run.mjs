@@ -7,6 +7,7 @@
 //
 //   node bench/run.mjs            reduced grid: a few minutes on 2 cores
 //   node bench/run.mjs --full     the thesis's grid: 1..100 characters, 1-4 threads, 800 steps, 20 runs
+//                                 (about 14 hours per runtime on 2 cores)
 //   node bench/run.mjs --only native,node,chromium   a subset of the runtimes
 //   node bench/run.mjs --out DIR  somewhere else than bench/results
 //   node bench/run.mjs --tiny     a few seconds per runtime: checks the pipeline (tests/wasm)

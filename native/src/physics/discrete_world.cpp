@@ -10,6 +10,8 @@
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
+#include "physics/collision_algorithm.h"
+
 namespace gaitlab::physics {
 
 namespace {
@@ -22,11 +24,10 @@ constexpr btScalar kSlack = 1e-3f;
 class GroundContact final : public btConvexPlaneCollisionAlgorithm {
  public:
   GroundContact(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* w0,
-                const btCollisionObjectWrapper* w1, bool swapped,
-                const btConvexPlaneCollisionAlgorithm::CreateFunc& bullets)
+                const btCollisionObjectWrapper* w1, bool swapped)
       : btConvexPlaneCollisionAlgorithm(nullptr, ci, w0, w1, swapped,
-                                        bullets.m_numPerturbationIterations,
-                                        bullets.m_minimumPointsPerturbationThreshold),
+                                        bullets().m_numPerturbationIterations,
+                                        bullets().m_minimumPointsPerturbationThreshold),
         swapped_(swapped) {
     btManifoldArray own;  // the manifold Bullet's constructor made, if any (once per pair)
     getAllContactManifolds(own);
@@ -49,19 +50,13 @@ class GroundContact final : public btConvexPlaneCollisionAlgorithm {
     btConvexPlaneCollisionAlgorithm::processCollision(w0, w1, info, out);
   }
 
-  struct CreateFunc : btCollisionAlgorithmCreateFunc {
-    explicit CreateFunc(bool swapped) { m_swapped = swapped; }
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* w0,
-                                                   const btCollisionObjectWrapper* w1) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(GroundContact));
-      return new (mem) GroundContact(ci, w0, w1, m_swapped, bullets_);
-    }
-    // Bullet's settings for its convex-plane algorithm (btDefaultCollisionConfiguration's).
-    btConvexPlaneCollisionAlgorithm::CreateFunc bullets_;
-  };
-
  private:
+  // Bullet's settings for its convex-plane algorithm (btDefaultCollisionConfiguration's).
+  static const btConvexPlaneCollisionAlgorithm::CreateFunc& bullets() {
+    static const btConvexPlaneCollisionAlgorithm::CreateFunc defaults;
+    return defaults;
+  }
+
   btPersistentManifold* manifold_;
   bool swapped_;
 };
@@ -90,10 +85,7 @@ DiscreteWorld::DiscreteWorld(btCollisionDispatcher* dispatcher, btBroadphaseInte
                              btConstraintSolver* solver, btCollisionConfiguration* configuration)
     : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration) {
   getDispatchInfo().m_useContinuous = false;
-  // Stateless apart from their order flag: one pair serves every world.
-  static GroundContact::CreateFunc boxPlane(false), planeBox(true);
-  dispatcher->registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &boxPlane);
-  dispatcher->registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &planeBox);
+  registerCollisionAlgorithm<GroundContact>(*dispatcher, BOX_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE);
 }
 
 void DiscreteWorld::predictUnconstraintMotion(btScalar timeStep) {

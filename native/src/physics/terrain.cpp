@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "physics/collision_algorithm.h"
 #include "physics/fnv1a.h"
 
 namespace gaitlab::physics {
@@ -268,15 +269,6 @@ class BoxTerrainAlgorithm : public btCollisionAlgorithm {
     if (manifold_) manifolds.push_back(manifold_);
   }
 
-  struct CreateFunc : btCollisionAlgorithmCreateFunc {
-    explicit CreateFunc(bool swapped) { m_swapped = swapped; }
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* a,
-                                                   const btCollisionObjectWrapper* b) override {
-      void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(BoxTerrainAlgorithm));
-      return new (memory) BoxTerrainAlgorithm(ci, a, b, m_swapped);
-    }
-  };
 
  private:
   btPersistentManifold* manifold_ = nullptr;
@@ -286,10 +278,7 @@ class BoxTerrainAlgorithm : public btCollisionAlgorithm {
 }  // namespace
 
 void registerTerrainCollision(btCollisionDispatcher& dispatcher) {
-  // Stateless, so one pair of create functions serves every world.
-  static BoxTerrainAlgorithm::CreateFunc boxFirst(false), terrainFirst(true);
-  dispatcher.registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, TERRAIN_SHAPE_PROXYTYPE, &boxFirst);
-  dispatcher.registerCollisionCreateFunc(TERRAIN_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE, &terrainFirst);
+  registerCollisionAlgorithm<BoxTerrainAlgorithm>(dispatcher, BOX_SHAPE_PROXYTYPE, TERRAIN_SHAPE_PROXYTYPE);
 }
 
 }  // namespace gaitlab::physics

@@ -53,9 +53,9 @@ if (!flag('--full')) FRAMES.steps = 240;
 if (flag('--tiny')) Object.assign(FRAMES, { characters: [3], steps: 10, runs: 2 });
 
 const grid = flag('--full') ? FULL : flag('--tiny') ? TINY : REDUCED;
-// The largest crowd a capacity probe builds: the WebAssembly heap is fixed at 256 MB, and a crowd
-// takes about 0.17 MB a biped and 0.33 MB a quadruped (the memory table), so 1200 bipeds or 600
-// quadrupeds (within the render buffer's 2340 and 910). The tiny grid only checks that the probes
+// The largest crowd a capacity probe builds, within the WebAssembly heap (fixed at 256 MB) and
+// the render buffer (2340 bipeds, 910 quadrupeds): 1200 bipeds (129 MB of heap, measured) or 600
+// quadrupeds (about 0.26 MB each, the memory table). The tiny grid only checks that the probes
 // run.
 const probeCap = (legs) => (flag('--tiny') ? 5 : legs === 2 ? 1200 : 600);
 const MAX_PROBES = 8;

@@ -269,7 +269,6 @@ class BoxTerrainAlgorithm : public btCollisionAlgorithm {
     if (manifold_) manifolds.push_back(manifold_);
   }
 
-
  private:
   btPersistentManifold* manifold_ = nullptr;
   bool swapped_;

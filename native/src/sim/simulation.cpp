@@ -272,7 +272,7 @@ void Simulation::stepShard(int shard) {
   worlds_[shard]->step();
   worlds_[shard]->updateContacts();
   // The fall test, here rather than in updateFallen: in full mode it then runs on the shard's
-  // thread instead of in the serial tail of the step (a ground ray cast per character).
+  // thread instead of in the serial tail of the step (a ground-height query per character).
   for (Agent* a : shardAgents_[shard]) a->down = hasFallen(*a->body, *worlds_[shard]);
 }
 

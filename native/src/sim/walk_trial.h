@@ -55,8 +55,8 @@ WalkResult runWalk(const WalkOptions& options);
 // Fall criterion (controller issue): the leg frame below half its standing height above the
 // ground, or tilted more than 60° from upright.
 bool hasFallen(const Simulation& sim, int character);
-// The same for a character standing on `ground` (any shard's world: they share one terrain).
-// Reads only that character and the terrain, so characters can be tested on many threads at once.
-bool hasFallen(const physics::Character& character, const physics::World& ground);
+// The same for a character in `world` (any shard's world will do: they share one terrain). Reads
+// only that character and the terrain, so characters can be tested on many threads at once.
+bool hasFallen(const physics::Character& character, const physics::World& world);
 
 }  // namespace gaitlab::sim

@@ -28,7 +28,7 @@ export type TimeField = 'controller_ms' | 'physics_ms' | 'step_ms';
 export const STEP_BUDGET_MS: number;
 export const CSV_COLUMNS: string[];
 export function validate(value: unknown, kind?: 'document' | 'results'): string[];
-export function documentsOf(value: unknown): BenchDocument[];
+export function overlayDocuments(value: unknown): BenchDocument[];
 export function toCsv(doc: BenchDocument): string;
 export function seriesKey(p: Point): string;
 export function curves(doc: BenchDocument, legs: Point['legs']): Map<string, Point[]>;

@@ -23,8 +23,28 @@ export function validate(value, kind = 'document') {
 }
 
 /** The documents inside a results file, or the document itself. */
-export function documentsOf(value) {
+function documentsOf(value) {
   return value && value.schema === 'gaitlab-bench-results/1' ? value.runs : [value];
+}
+
+/**
+ * What to overlay from a results file: one document per runtime, holding the points of all its
+ * documents (the grid, the per-frame run, the capacity probes beyond the grid, the rounds in
+ * turns); of points measured more than once (same legs, crowd, threads and mode), the first.
+ */
+export function overlayDocuments(value) {
+  const byRuntime = new Map();
+  const key = (p) => `${p.legs}/${p.characters}/${p.threads}/${p.mode}`;
+  for (const doc of documentsOf(value)) {
+    const merged = byRuntime.get(doc.machine.runtime);
+    if (!merged) {
+      byRuntime.set(doc.machine.runtime, { ...doc, points: [...doc.points] });
+      continue;
+    }
+    const seen = new Set(merged.points.map(key));
+    for (const p of doc.points) if (!seen.has(key(p))) merged.points.push(p), seen.add(key(p));
+  }
+  return [...byRuntime.values()];
 }
 
 export const CSV_COLUMNS = [

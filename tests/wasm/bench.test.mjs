@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { STEP_BUDGET_MS, nextCapacityProbe, toCsv, validate } from '../../bench/lib/analysis.mjs';
+import { STEP_BUDGET_MS, nextCapacityProbe, overlayDocuments, toCsv, validate } from '../../bench/lib/analysis.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const native = path.join(root, 'build/native/gaitlab');
@@ -162,4 +162,24 @@ test('bench/ab-wasm.mjs steps the same crowd with two builds in turns and report
   const bad = run(process.execPath, ['bench/ab-wasm.mjs', 'build/wasm', 'build/wasm', '3']);
   assert.equal(bad.status, 2);
   assert.match(bad.stderr, /usage/);
+});
+
+test('overlayDocuments gives one document per runtime with every point measured, the first of repeats', () => {
+  const point = (characters, mode, mean) => ({ legs: 2, characters, threads: mode === 'serial' ? 1 : 2, mode, step_ms: { mean } });
+  const doc = (runtime, points) => ({ machine: { runtime }, inputs: {}, points });
+  const results = {
+    schema: 'gaitlab-bench-results/1',
+    runs: [
+      doc('native', [point(1, 'serial', 1), point(100, 'full', 2)]),  // the grid
+      doc('wasm-browser', [point(1, 'serial', 3), point(100, 'full', 4)]),
+      doc('native', [point(400, 'full', 8)]),  // a capacity probe
+      doc('native', [point(100, 'full', 9)]),  // a round in turns: a repeat
+    ],
+  };
+  const docs = overlayDocuments(results);
+  assert.deepEqual(docs.map((d) => d.machine.runtime), ['native', 'wasm-browser']);
+  assert.deepEqual(docs[0].points.map((p) => [p.characters, p.step_ms.mean]), [[1, 1], [100, 2], [400, 8]]);
+  assert.equal(results.runs[0].points.length, 2, 'the results file is left as it was');
+  const single = doc('native', [point(1, 'serial', 1)]);
+  assert.deepEqual(overlayDocuments(single), [single]);
 });

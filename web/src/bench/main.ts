@@ -11,7 +11,7 @@ import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import './bench.css';
 import {
-  STEP_BUDGET_MS, capacity, curves, documentsOf, legsName, ratioTable, toCsv, validate,
+  STEP_BUDGET_MS, capacity, curves, legsName, overlayDocuments, ratioTable, toCsv, validate,
   type BenchDocument, type Point, type TimeField,
 } from '../../../bench/lib/analysis.mjs';
 import { buildGrid, parseList, pointCost, type BenchEvent, type BenchInputs, type PointSpec } from './protocol';
@@ -265,7 +265,7 @@ uploadInput.onchange = async () => {
     const kind = (value as { schema?: string })?.schema === 'gaitlab-bench-results/1' ? 'results' : 'document';
     const problems = validate(value, kind);
     if (problems.length) throw new Error(problems.slice(0, 3).join('; '));
-    for (const doc of documentsOf(value)) overlays.push({ name: `${file.name} ${doc.machine.runtime}`, doc });
+    for (const doc of overlayDocuments(value)) overlays.push({ name: `${file.name} ${doc.machine.runtime}`, doc });
     status.textContent = `Overlaid ${file.name}.`;
     drawCharts();
   } catch (error) {

@@ -57,5 +57,5 @@ console.log('|---|---|---|---|---|---|---|');
 for (const name of Object.keys(samples)) {
   const step = samples[name].map((s) => s.step);
   const base = median(samples[name.replace('2T', '1T')].map((s) => s.step));
-  console.log(`| ${name.split(' ')[0]} | ${name.split(' ')[1]} | ${median(step).toFixed(2)} (${spread(step)}) | ${median(samples[name].map((s) => s.physics)).toFixed(2)} | ${(base / median(step)).toFixed(2)} | ${hashes[name]} | ${allocs[name]?.toFixed(2) ?? '0 (tests/native/hot_path_test.cpp)'} |`);
+  console.log(`| ${name.split(' ')[0]} | ${name.split(' ')[1]} | ${median(step).toFixed(2)} (${spread(step)}) | ${median(samples[name].map((s) => s.physics)).toFixed(2)} | ${(base / median(step)).toFixed(2)} | ${hashes[name]} | ${allocs[name]?.toFixed(2) ?? '0 (tests/native/sim/hot_path_test.cpp)'} |`);
 }

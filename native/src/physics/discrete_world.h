@@ -20,7 +20,7 @@
 // DiscreteWorld skips these and keeps the rest (damping of damped bodies, hit fractions, dropping
 // predictive contacts, Bullet's algorithm for every box near the plane), so it computes bit for bit
 // what btDiscreteDynamicsWorld computes with m_useContinuous = false:
-// tests/native/discrete_world_test.cpp.
+// tests/native/physics/discrete_world_test.cpp.
 #pragma once
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 

@@ -26,7 +26,7 @@
 // rows, rolling friction, cone-twist constraints (the only ones with a solveConstraintObsolete),
 // row solvers other than Bullet's scalar reference ones, or a row with a zero Jacobian (whose
 // residual is not a number, which makes Bullet's running maximum depend on the order).
-// tests/native/solver_test.cpp checks the results against Bullet's own sweep.
+// tests/native/physics/solver_test.cpp checks the results against Bullet's own sweep.
 #pragma once
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
 

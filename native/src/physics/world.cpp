@@ -23,7 +23,7 @@ namespace {
 // This solver sizes them for the worst case of the world's contents instead, once per change of
 // contents (World::reserve, at scene building, or else at the start of the next step), so that
 // steps in a steady scene allocate nothing (DESIGN.md, parallel execution;
-// tests/native/hot_path_test.cpp).
+// tests/native/sim/hot_path_test.cpp).
 class ReservingSolver : public InterleavedSolver {
  public:
   void reserveFor(int bodies, int joints) {

@@ -1,6 +1,6 @@
 // Real-time pacing of the sim worker: whole fixed steps, capped catch-up, no catch-up after pauses.
 import { describe, expect, it } from 'vitest';
-import { FixedStepClock } from '../../web/src/sim/fixed-step-clock';
+import { FixedStepClock } from '../../../web/src/sim/fixed-step-clock';
 
 const STEP = 1 / 120;
 

@@ -1,8 +1,8 @@
 // The page's view of the ground (web/src/sim/terrain-grid.ts): heights between samples follow
 // the triangles Bullet's heightfield makes of each cell, and the plane lies beyond the grid.
 import { describe, expect, it } from 'vitest';
-import { FLAT_GROUND, groundHeight, intersectGround, isTerrainKind, type TerrainGrid } from '../../web/src/sim/terrain-grid';
-import { simOptionsFromQuery, type SimOptions } from '../../web/src/sim/protocol';
+import { FLAT_GROUND, groundHeight, intersectGround, isTerrainKind, type TerrainGrid } from '../../../web/src/sim/terrain-grid';
+import { simOptionsFromQuery, type SimOptions } from '../../../web/src/sim/protocol';
 
 // 3 × 3 samples, 0.5 m apart, from (-0.5, -0.5).
 const grid: TerrainGrid = {

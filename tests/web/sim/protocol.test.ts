@@ -1,7 +1,7 @@
 // Helpers of the main-thread ⇄ sim-worker protocol, and the overlay's rate meter.
 import { describe, expect, it } from 'vitest';
-import { defaultThreads, errorMessage, MAX_THREADS, simOptionsFromQuery, type SimOptions } from '../../web/src/sim/protocol';
-import { RateMeter } from '../../web/src/ui/rate-meter';
+import { defaultThreads, errorMessage, MAX_THREADS, simOptionsFromQuery, type SimOptions } from '../../../web/src/sim/protocol';
+import { RateMeter } from '../../../web/src/ui/rate-meter';
 
 const defaults: SimOptions = { wasmUrl: '/wasm/gaitlab.mjs', threads: 2, seed: 1, characters: 6 };
 

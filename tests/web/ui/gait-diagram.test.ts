@@ -2,7 +2,7 @@
 // and duty factor (thesis §3.1.1: the trigger is the phase of lift-off), and what dragging each
 // part of a stance bar does to them.
 import { describe, expect, it } from 'vitest';
-import { dragTiming, stanceOf } from '../../web/src/ui/gait-diagram';
+import { dragTiming, stanceOf } from '../../../web/src/ui/gait-diagram';
 
 const leg = (stepTrigger: number, dutyFactor: number) => ({ leg: 'x', stepTrigger, dutyFactor });
 const bounds: [number, number] = [0.2, 0.9];

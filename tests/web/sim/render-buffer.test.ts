@@ -5,9 +5,9 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Worker } from 'node:worker_threads';
 import { describe, expect, it } from 'vitest';
-import { BODY_INFO, HEADER, MATRIX_FLOATS, RenderBufferReader } from '../../web/src/sim/render-buffer';
+import { BODY_INFO, HEADER, MATRIX_FLOATS, RenderBufferReader } from '../../../web/src/sim/render-buffer';
 
-const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../..');
 
 /** Where the test puts the header: not at 0, and 8-aligned as a C++ struct with a double is. */
 const HEADER_AT = 64;

@@ -1,7 +1,7 @@
 // The performance page's grid: the same points, in the same order, as `gaitlab bench`
 // (native/src/api/cli_bench.cpp), and the same list syntax as its --characters.
 import { describe, expect, it } from 'vitest';
-import { buildGrid, parseList, pointCost, type BenchInputs } from '../../web/src/bench/protocol';
+import { buildGrid, parseList, pointCost, type BenchInputs } from '../../../web/src/bench/protocol';
 
 const inputs: BenchInputs = {
   legs: [2, 4], characters: [1, 5], threads: [1, 2], modes: ['serial', 'controller', 'full'],

@@ -1,7 +1,7 @@
 // Picking against the instance matrices (web/src/render/picking.ts) and the ballistic throw.
 import * as THREE from 'three';
 import { describe, expect, it } from 'vitest';
-import { pickBody, throwVelocity } from '../../web/src/render/picking';
+import { pickBody, throwVelocity } from '../../../web/src/render/picking';
 
 /** A column-major instance matrix: box of `size` at `position`, turned by `yaw` about y. */
 function box(position: [number, number, number], size: [number, number, number], yaw = 0): number[] {

@@ -9,7 +9,7 @@ import {
   formatDuration,
   parseNumber,
   type OptimizerSchema,
-} from '../../web/src/optimize/options';
+} from '../../../web/src/optimize/options';
 
 /** A settings table in the shape of gl_opt_settings_json (native/src/optimize/objective.h). */
 const schema: OptimizerSchema = {

@@ -9,9 +9,9 @@ import {
   sameParams,
   type GaitFile,
   type GaitProblem,
-} from '../../web/src/share/gait-file';
-import { crc32, decodeGaitHash, encodeGaitHash, fromBase64Url, hasGait, MAX_LINK_CHARS, toBase64Url } from '../../web/src/share/link';
-import { schema } from './fixtures/schema';
+} from '../../../web/src/share/gait-file';
+import { crc32, decodeGaitHash, encodeGaitHash, fromBase64Url, hasGait, MAX_LINK_CHARS, toBase64Url } from '../../../web/src/share/link';
+import { schema } from '../fixtures/schema';
 
 /** The problem decoding `hash` reports (fails the test if it decodes). */
 async function problemOf(hash: string, migrations = {}): Promise<{ problem: GaitProblem; message: string }> {

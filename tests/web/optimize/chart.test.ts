@@ -1,7 +1,7 @@
 // The optimize panel's chart helpers (web/src/optimize/chart.ts): a y range fitted to the best
 // objective's values, and tick labels with just enough decimals to tell the ticks apart.
 import { describe, expect, it } from 'vitest';
-import { fitRange, tickLabels } from '../../web/src/optimize/chart';
+import { fitRange, tickLabels } from '../../../web/src/optimize/chart';
 
 describe('the chart of the best objective', () => {
   it('fits the y range to the values with a margin', () => {

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // Compares the thesis's greedy stochastic search (§3.3) with CMA-ES on the same evaluation
-// budget (issue 6 item 7), and times a generation natively and as WebAssembly at 1 and 2
+// budget, and times a generation natively and as WebAssembly at 1 and 2
 // threads. Every figure comes from running `gaitlab optimize`; nothing is typed in.
 //
 //   node bench/optimizers.mjs [--generations N] [--candidates K] [--seconds S] [--seeds 1,2,3]

@@ -338,7 +338,7 @@ for (const d of gridDocs) {
   md.push('');
 }
 
-// Goals of the issue.
+// The crowd benchmark's goals.
 const ratio = (a, b) => (a && b && b > 0 ? a / b : null);
 const stepAt = (d, legs, mode, threads) => d && find(d, { legs, characters: most, mode, threads })?.step_ms.mean;
 const goals = [];
@@ -389,7 +389,7 @@ for (const legs of [2, 4]) {
       (recurring.length ? `; spikes that recur in every run (p99 of the per-step medians over runs): median over series ${f(medianOf(recurring), 2)}, worst ${f(Math.max(...recurring), 2)}` : '') : '–']);
 }
 md.push(...capacityTable());
-md.push('**Goals (issue 4), this run**', '', '| goal | target | measured |', '|---|---|---|', ...goals.map((g) => `| ${g.join(' | ')} |`), '');
+md.push('**Goals of the crowd benchmark, this run**', '', '| goal | target | measured |', '|---|---|---|', ...goals.map((g) => `| ${g.join(' | ')} |`), '');
 
 md.push('**Memory** (allocator bytes in use with the simulation alive; resident set of the process)', '', '| runtime | legs | characters | heap MB | scene MB | RSS MB |', '|---|---|---|---|---|---|');
 for (const d of gridDocs) {

@@ -1,11 +1,11 @@
 #!/usr/bin/env node
-// The walking benchmark of the controller issue: the shipped presets, measured against every
+// The walking benchmark: the shipped presets, measured against every
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
-// gait file to measure instead of the preset: walking-<file name>.{json,md}). Criteria (issue 3):
+// gait file to measure instead of the preset: walking-<file name>.{json,md}). The walking criteria:
 //   - 60 s on flat ground at two goal speeds, one twice the other, without a fall;
 //   - mean speed within ±15 % of the goal; heading drift under 10° walking straight;
 //   - with a turn command, yaw rate within ±20 % of it;

@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // Runs the gaitlab CLI compiled to WebAssembly under Node: `node bench/wasm.mjs walk ...` takes
 // the same arguments and prints the same JSON as build/native/gaitlab, so native and WASM can be
-// compared in one run (DESIGN.md, contracts).
+// compared in one run (docs/design.md, contracts).
 import { createRequire } from 'node:module';
 import { readFileSync, existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';

@@ -109,7 +109,7 @@ test('bench/run.mjs --tiny: native, WASM in Node and in Chromium, a valid result
     }
     for (const f of svgs) assert.match(fs.readFileSync(path.join(out, f), 'utf8'), /^<svg [^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"[\s\S]*<\/svg>\s*$/);
     const md = fs.readFileSync(path.join(out, files.find((f) => f.endsWith('.md'))), 'utf8');
-    assert.match(md, /Goals \(issue 4\)/);
+    assert.match(md, /Goals of the crowd benchmark/);
     assert.match(md, /\| native \| biped \| 2T \| \*\*5 \([\d.]+ ms\)\*\* \| – \| 5 \|/, 'the capacity table lists the probe');
     assert.match(md, /spikes that recur in every run/);
     // The WASM/native goal from native and Chromium measuring the largest crowd in turns.

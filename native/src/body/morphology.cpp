@@ -1,5 +1,5 @@
-// The two characters, with real-world proportions and masses (not the thesis's "scale 2" boxes,
-// REFERENCE.md): a 59 kg human-sized biped (hip height 0.91 m) and a 33 kg dog-sized quadruped
+// The two characters, with real-world proportions and masses (not the original implementation's "scale 2"
+// boxes, docs/original-implementation.md): a 59 kg human-sized biped (hip height 0.91 m) and a 33 kg dog-sized quadruped
 // (shoulder height 0.49 m, leg frames 0.8 m apart, a 4-link spine as in the thesis).
 // Proportions: thigh ≈ shin ≈ 0.245 × stature (Winter, Biomechanics of Human Movement);
 // segment masses ≈ 10 % (thigh), 4.7 % (shank), 1.5 % (foot) of body mass, trunk + head + arms

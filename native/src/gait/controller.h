@@ -50,7 +50,7 @@ class Controller {
 
   // One fixed step (Algorithm 1). torques[segment] is the torque of the joint between `segment`
   // and its parent, world frame, exerted on the segment; the physics side applies its opposite
-  // to the parent (an equal and opposite pair: REFERENCE.md defect 3). Root entries are zero.
+  // to the parent (an equal and opposite pair: defect 3 of the original implementation, docs/original-implementation.md). Root entries are zero.
   void update(double dt, const CharacterState& state, Eigen::Vector3d* torques);
 
   const GaitPlayer& player() const { return player_; }

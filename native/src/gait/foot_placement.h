@@ -3,7 +3,7 @@
 //
 // Frames: "heading" vectors are in the character's heading frame (heading.h: +z forward, +x left,
 // +y up); positions without that word are world. Velocities entering the feedback must be true
-// velocities in m/s (REFERENCE.md defect 1: the original never divided by dt).
+// velocities in m/s (defect 1 of the original implementation, docs/original-implementation.md: the original never divided by dt).
 #pragma once
 #include <Eigen/Dense>
 

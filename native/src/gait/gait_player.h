@@ -29,7 +29,7 @@ enum GaitEvent : unsigned {
 
 struct LegSchedule {
   double stepTrigger = 0.0;  // gait phase of lift-off, [0, 1)
-  double dutyFactor = 0.62;  // fraction of the cycle in stance (REFERENCE.md default)
+  double dutyFactor = 0.62;  // fraction of the cycle in stance (the original implementation's default, docs/original-implementation.md)
 };
 
 struct LateStrikeParams {
@@ -99,7 +99,7 @@ class GaitPlayer {
   void updateProgress(LegGaitState& s, double duty) const;
 
   int legCount_ = 0;
-  double period_ = 2.0;  // s (REFERENCE.md default)
+  double period_ = 2.0;  // s (the original implementation's default, docs/original-implementation.md)
   double phase_ = 0.0;   // Φ in [0, 1)
   LateStrikeParams late_;
   LegSchedule schedule_[kMaxLegs];

@@ -3,7 +3,7 @@
 // the DOFs that precede that segment in a chain by the Jacobian transpose (eq. 3.3). Applied to
 // the swing legs and the spine, so that the PD targets need not fight gravity.
 //
-// REFERENCE.md defect 5: the original used the wrong segment masses and spine weights that did
+// Defect 5 of the original implementation (docs/original-implementation.md): the original used the wrong segment masses and spine weights that did
 // not sum to one. Here the caller passes each segment's own mass and COM, and the two spine
 // weights of a link always sum to one, so each link is compensated exactly once in total.
 #pragma once

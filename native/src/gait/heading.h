@@ -2,7 +2,7 @@
 // character faces +z and its left is +x (y up, right-handed, as three.js and body/morphology.h).
 //
 // The original implementation worked in world axes throughout, so its characters could only walk
-// along +z on flat ground (REFERENCE.md defect 7). Everything the controller expresses relative
+// along +z on flat ground (defect 7 of the original implementation, docs/original-implementation.md). Everything the controller expresses relative
 // to the character (step lengths, desired velocity, the forward sign of F_D, swing trajectories)
 // goes through these conversions instead.
 #pragma once

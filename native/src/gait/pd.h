@@ -1,6 +1,6 @@
 // Proportional-derivative controllers (thesis §3.1.7, eq. 3.9): f = Kp·e + Kd·de/dt.
 //
-// The orientation PD fixes REFERENCE.md defect 4: the original computed the orientation error in
+// The orientation PD fixes defect 4 of the original implementation (docs/original-implementation.md): the original computed the orientation error in
 // the body frame but applied the result as a world-frame torque, and never checked for the short
 // way round (a quaternion q and −q are the same rotation; without the check the error can be
 // the 2π − θ "long way", and the torque flips sign as the rotation passes through π). Here the
@@ -66,7 +66,7 @@ inline Eigen::Vector3d orientationPd(double kp, double kd, const Eigen::Quaterni
 
 // Joint PD: the torque a joint exerts on its CHILD body so that the child's orientation relative
 // to its parent approaches `relativeDesired` (child orientation expressed in the parent's frame).
-// World axes. Apply +τ to the child and −τ to the parent (REFERENCE.md defect 3: the original
+// World axes. Apply +τ to the child and −τ to the parent (defect 3 of the original implementation: the original
 // applied it to the child only). The damping acts on the relative angular velocity, so a joint
 // holding its target exerts nothing on a body that merely rotates as a whole.
 inline Eigen::Vector3d jointPd(double kp, double kd, const Eigen::Quaterniond& parent,

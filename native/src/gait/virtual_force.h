@@ -5,7 +5,7 @@
 //
 // A chain is a fixed-capacity list of DOFs ordered from the base (e.g. the leg frame) towards
 // the end effector (e.g. the foot). A 3-DOF joint contributes three rows. Everything is on the
-// stack: these run per character per step inside the parallel loop (REFERENCE.md defect 10).
+// stack: these run per character per step inside the parallel loop (defect 10 of the original implementation, docs/original-implementation.md).
 #pragma once
 #include <Eigen/Dense>
 
@@ -51,7 +51,7 @@ void jacobianTransposeTorques(const DofChain& chain, const Eigen::Vector3d& p,
 // Same, as torque VECTORS α_i τ_i (world). A torque vector is what the physics side applies:
 // +α_i τ_i on the body on the END side of DOF i (the part of the chain the DOF moves, which holds
 // p) and −α_i τ_i on the body on the BASE side — an equal and opposite pair, so the virtual force
-// adds no net angular momentum (REFERENCE.md defect 3).
+// adds no net angular momentum (defect 3 of the original implementation).
 void jointTorqueVectors(const DofChain& chain, const Eigen::Vector3d& p,
                         const Eigen::Vector3d& force, Eigen::Vector3d* out, int dofCount = -1);
 

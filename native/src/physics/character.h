@@ -38,7 +38,7 @@ class Character {
 
   // torques[segment]: torque of the joint between the segment and its parent, world frame.
   // Applied as an equal and opposite pair: +τ on the segment, −τ on its parent (the original
-  // applied it to the child only, creating angular momentum from nothing: REFERENCE.md defect 3).
+  // applied it to the child only, creating angular momentum from nothing: defect 3 of the original implementation, docs/original-implementation.md).
   void applyJointTorques(const Eigen::Vector3d* torques);
 
   // Marks foot `leg`'s body so that contact detection can find its flag (World::updateContacts).

@@ -1,5 +1,5 @@
 // 64-bit FNV-1a over raw bytes: the state hash of a simulation and the terrain's content hash
-// ("same inputs, same bits", DESIGN.md). Not for security; cheap and order-sensitive.
+// ("same inputs, same bits", docs/design.md). Not for security; cheap and order-sensitive.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// The ground's relief (issue 3 item 5, issue 5): flat, a ±5° slope, or 3 cm bumps.
+// The ground's relief (walking criteria on uneven ground; the demo's ground choice): flat, a ±5° slope, or 3 cm bumps.
 //
 // A terrain is a square grid of height samples centred on the origin, joined by the triangles of
 // Bullet's btHeightfieldTerrainShape, and an infinite flat plane at planeHeight() beyond it. The

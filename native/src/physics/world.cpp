@@ -22,7 +22,7 @@ namespace {
 // new contact point three): a heap allocation in the middle of a step, at a moment nobody chose.
 // This solver sizes them for the worst case of the world's contents instead, once per change of
 // contents (World::reserve, at scene building, or else at the start of the next step), so that
-// steps in a steady scene allocate nothing (DESIGN.md, parallel execution;
+// steps in a steady scene allocate nothing (docs/design.md, parallel execution;
 // tests/native/sim/hot_path_test.cpp).
 class ReservingSolver : public InterleavedSolver {
  public:

@@ -19,7 +19,7 @@ class btConstraintSolver;
 
 namespace gaitlab::physics {
 
-// Collision filtering (DESIGN.md, physics modelling): characters collide with the ground and
+// Collision filtering (docs/design.md, physics modelling): characters collide with the ground and
 // with props, but neither with themselves nor with each other — limbs of one figure overlap at
 // the joints by construction, and crowds are spaced so that characters do not meet; props
 // collide with everything.

@@ -78,7 +78,7 @@ TEST(GaitPlayer, StanceFractionEqualsDutyFactor) {
 }
 
 TEST(GaitPlayer, LegsStartingInSwingReportTheirLiftOffOnTheFirstUpdate) {
-  // Biped at Φ = 0 (REFERENCE.md triggers): the left leg's lift-off is now, the right stands.
+  // Biped at Φ = 0 (the original implementation's step triggers): the left leg's lift-off is now, the right stands.
   GaitPlayer g;
   const LegSchedule legs[2] = {{0.0, 0.62}, {0.5, 0.62}};
   g.configure(2, legs, 2.0);
@@ -223,7 +223,7 @@ TEST(GaitPlayer, AFootThatNeverLandsStartsTheNextSwingAtItsTrigger) {
 }
 
 TEST(GaitPlayer, BipedTriggersAlternate) {
-  // REFERENCE.md: biped L 0 / R 0.5, D = 0.62: both feet down around each switch.
+  // The original implementation's biped: L 0 / R 0.5, D = 0.62: both feet down around each switch.
   GaitPlayer g;
   const LegSchedule legs[2] = {{0.0, 0.62}, {0.5, 0.62}};
   g.configure(2, legs, 2.0);

@@ -32,7 +32,7 @@ double potential(const SerialChain& c, const std::vector<double>& angle,
   return v;
 }
 
-// The biped leg of REFERENCE.md: leg frame 10 kg (moved by the 3 leg-frame DOFs), upper leg
+// The original implementation's biped leg (docs/original-implementation.md): leg frame 10 kg (moved by the 3 leg-frame DOFs), upper leg
 // 5 kg (after the hip), lower leg 4 kg (after the knee), foot 1 kg (after both ankle DOFs).
 std::vector<Body> legBodies() {
   return {{10.0, 3, Eigen::Vector3d(0.0, 0.0, 0.0)},
@@ -123,7 +123,7 @@ TEST(GaitGravity, SpineWeightsSumToOne) {
     EXPECT_GE(w.back, 0.0);
     EXPECT_GE(w.front, 0.0);
   }
-  // Four links evenly spaced between leg frames 2 m apart (REFERENCE.md quadruped): the link
+  // Four links evenly spaced between leg frames 2 m apart (the original implementation's quadruped): the link
   // nearest the back leg frame is held mostly from the back, and the weights mirror.
   const Eigen::Vector3d back(0, 1, -1), front(0, 1, 1);
   double prevBack = 2.0;

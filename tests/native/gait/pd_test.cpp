@@ -1,4 +1,4 @@
-// PD controllers (thesis §3.1.7, eq. 3.9), and the orientation PD that fixes REFERENCE.md
+// PD controllers (thesis §3.1.7, eq. 3.9), and the orientation PD that fixes the original implementation's
 // defect 4: shortest arc, one frame (world) for error, velocities and torque.
 #include <gtest/gtest.h>
 

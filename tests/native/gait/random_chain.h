@@ -77,7 +77,7 @@ inline Eigen::Quaterniond randomRot(std::mt19937& rng) {
   return q;
 }
 
-// A leg like the thesis's (REFERENCE.md): 3 leg-frame DOFs at the leg frame's centre, hip
+// A leg like the original implementation's (docs/original-implementation.md): 3 leg-frame DOFs at the leg frame's centre, hip
 // (1 DOF, offset to the hip corner), knee (1 DOF, down the thigh), ankle (2 DOF, down the shin).
 // Lengths and axes are randomised a little so no test passes by symmetry.
 inline SerialChain randomLeg(std::mt19937& rng) {

@@ -35,7 +35,7 @@ TEST(GaitVirtualForce, JacobianTransposeMatchesFiniteDifferencesOnRandomLegs) {
   std::mt19937 rng(1234);
   for (int trial = 0; trial < 50; ++trial) {
     const SerialChain leg = randomLeg(rng);
-    ASSERT_EQ(leg.size(), 7);  // 3 leg-frame DOFs + hip + knee + 2 ankle (REFERENCE.md)
+    ASSERT_EQ(leg.size(), 7);  // 3 leg-frame DOFs + hip + knee + 2 ankle (docs/original-implementation.md)
     const std::vector<double> angle = randomAngles(rng, leg.size());
     const Eigen::Vector3d toeLocal(0.02, -0.05, 0.3);  // a point on the foot
     const Eigen::Vector3d p = leg.point(angle, leg.size(), toeLocal);

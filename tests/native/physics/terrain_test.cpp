@@ -377,7 +377,7 @@ TEST(Terrain, AFlatHeightfieldWalksLikeThePlane) {
   EXPECT_NEAR(distance[1], distance[0], 0.05 * distance[0]);
 }
 
-// Issue 3: 30 s on the ±5° slope and on the 3 cm bumps without a fall, at both goal speeds of
+// The walking criteria: 30 s on the ±5° slope and on the 3 cm bumps without a fall, at both goal speeds of
 // the walking benchmark, with the shipped biped preset (the runs of bench/walking.mjs: the slope
 // starting up it, down it and across it; the bumps of seed 1). The 1.0 m/s run starting
 // downhill is the one the previous preset failed (fell at 25.5 s). About 0.25 s of CPU a run.

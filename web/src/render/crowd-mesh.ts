@@ -2,7 +2,7 @@
 // box: one draw call (plus one per shadow pass) however many bodies there are.
 //
 // Each animation frame copies the newest complete frame of matrices from the shared render
-// buffer straight into instanceMatrix (DESIGN.md, data flow step 3). The matrices arrive with
+// buffer straight into instanceMatrix (docs/design.md, data flow step 3). The matrices arrive with
 // each box's size baked in, in three.js's column-major layout, so no per-body work is done here.
 import * as THREE from 'three';
 import { MATRIX_FLOATS, type FrameMeta, type RenderBufferReader } from '../sim/render-buffer';

@@ -1,6 +1,6 @@
 // The three.js stage the crowd stands on: renderer, sky and fog, lights with shadows, the ground
 // with a metre grid (flat, or the terrain's relief drawn from the physics' own samples), and an
-// orbit camera. Units are metres, y up (DESIGN.md, conventions).
+// orbit camera. Units are metres, y up (docs/design.md, conventions).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { TerrainGrid } from '../sim/terrain-grid';

@@ -1,4 +1,4 @@
-// Real-time pacing of the fixed-step simulation (DESIGN.md: fixed step of 1/120 s).
+// Real-time pacing of the fixed-step simulation (docs/design.md: fixed step of 1/120 s).
 //
 // Wall time is accumulated and spent in whole fixed steps, so simulated time follows the wall
 // clock however irregularly the worker's timer fires. When the machine cannot keep up, the

@@ -1,5 +1,5 @@
 // TypeScript mirror of native/src/sim/render_buffer.h: the render transforms the sim worker
-// publishes into WASM memory and the main thread reads every animation frame (DESIGN.md, data
+// publishes into WASM memory and the main thread reads every animation frame (docs/design.md, data
 // flow steps 2–3). The offsets below are the ones the header static_asserts.
 //
 // Reading protocol (a seqlock over two buffers). The writer increments `seq` when it starts

@@ -1,5 +1,5 @@
 // Main-thread side of the sim worker: starts it, sends typed commands, and keeps the newest
-// statistics and render-buffer reader. It never steps anything itself (DESIGN.md, data flow).
+// statistics and render-buffer reader. It never steps anything itself (docs/design.md, data flow).
 import { errorMessage, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
 import { RenderBufferReader } from './render-buffer';
 import type { TerrainGrid } from './terrain-grid';

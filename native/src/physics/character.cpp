@@ -62,8 +62,8 @@ Character::Character(World& world, const body::Morphology& morphology,
                                       parent->getWorldTransform().inverse() * hingeFrame,
                                       child->getWorldTransform().inverse() * hingeFrame, false);
       // btHingeConstraint::getHingeAngle() measures the parent relative to the child, the
-      // opposite sign of our right-handed child-relative-to-parent angle (checked in
-      // tests/native/physics_test.cpp), so the limits are mirrored.
+      // opposite sign of our right-handed child-relative-to-parent angle (measured:
+      // docs/controller-notes.md, "Measured" 1), so the limits are mirrored.
       h->setLimit(static_cast<btScalar>(-j.upper[0]), static_cast<btScalar>(-j.lower[0]));
       c = h;
     } else {

@@ -34,9 +34,9 @@ void PhysicsShards::removeAgent(const Agent* agent) {
   inShard.erase(std::find(inShard.begin(), inShard.end(), agent));
 }
 
-void PhysicsShards::replaceAgent(const Agent* old, Agent* fresh) {
+void PhysicsShards::replaceAgent(Agent* old, Agent* fresh) {
   auto& inShard = shardAgents_[old->shard];
-  std::replace(inShard.begin(), inShard.end(), const_cast<Agent*>(old), fresh);
+  std::replace(inShard.begin(), inShard.end(), old, fresh);
 }
 
 double PhysicsShards::standingHeight(int shard, const body::Morphology& m, double x, double z,

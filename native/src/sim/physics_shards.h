@@ -36,7 +36,7 @@ class PhysicsShards {
   // Characters of each shard in spawn order, for the shard's contact and fall updates.
   void addAgent(Agent* agent) { shardAgents_[agent->shard].push_back(agent); }
   void removeAgent(const Agent* agent);
-  void replaceAgent(const Agent* old, Agent* fresh);  // same place in its shard's order
+  void replaceAgent(Agent* old, Agent* fresh);  // same place in its shard's order
   // Height at which a character placed at (x, z) facing `heading` stands with its rest pose's
   // soles on the ground: the highest ground under any sole touches it, so no foot starts inside
   // uneven ground (on flat ground: the ground height, as always).

@@ -130,24 +130,39 @@ const std::vector<Command>& commandLog() {
   return log;
 }
 
-constexpr int kSteps = 420;
+constexpr int kSteps = 720;  // 6 s: some fall after the fast goal and are reset 1.5 s later
 
-// The run through the C ABI, as the sim worker drives it.
+// The run through the C ABI, as the sim worker drives it: its scene, its commands, and what it
+// does after adding characters (each type's last goal given to all: the added ones get it too).
 std::string replayThroughTheCAbi(int threads, uint32_t seed) {
   void* s = gl_sim_create(threads, seed);
-  gl_sim_add_characters(s, GL_LAYOUT_ALTERNATING, 6);
+  double lastGoal[2][2] = {{gl_cruise_speed(GL_KIND_BIPED), 0}, {gl_cruise_speed(GL_KIND_QUADRUPED), 0}};
+  const auto add = [&](int kind, int count) {
+    const int added = gl_sim_add_characters(s, kind, count);
+    std::vector<double> info(GL_INFO_FIELDS * gl_sim_character_count(s));
+    const int n = gl_sim_character_info(s, info.data(), gl_sim_character_count(s));
+    for (int i = n - added; i < n; ++i) {
+      const double* o = &info[GL_INFO_FIELDS * i];
+      const int k = static_cast<int>(o[GL_INFO_KIND]);
+      gl_sim_set_goal(s, static_cast<int>(o[GL_INFO_ID]), lastGoal[k][0], lastGoal[k][1]);
+    }
+  };
+  add(GL_LAYOUT_ALTERNATING, 6);
   size_t next = 0;
   for (int step = 0; step < kSteps; ++step) {
     for (; next < commandLog().size() && commandLog()[next].step == step; ++next) {
       const Command& c = commandLog()[next];
       switch (c.type) {
-        case Command::Goal: gl_sim_set_goal(s, c.id, c.a, c.b); break;
+        case Command::Goal:
+          gl_sim_set_goal(s, c.id, c.a, c.b);
+          if (c.id == -1) lastGoal[0][0] = lastGoal[1][0] = c.a, lastGoal[0][1] = lastGoal[1][1] = c.b;
+          break;
         case Command::Throw: gl_sim_throw_box(s, -3, 1.2, 2, 9, 1, -1, 0.12); break;
         case Command::Drag: gl_sim_drag(s, c.id, 0, 0, 0.1, 0, 1, 2.5, 1); break;
         case Command::EndDrag: gl_sim_end_drag(s); break;
         case Command::Reset: gl_sim_reset_character(s, c.id); break;
         case Command::Remove: gl_sim_remove_character(s, c.id); break;
-        case Command::Add: gl_sim_add_characters(s, static_cast<int>(c.a), static_cast<int>(c.b)); break;
+        case Command::Add: add(static_cast<int>(c.a), static_cast<int>(c.b)); break;
         case Command::AutoReset: gl_sim_set_auto_reset(s, c.a); break;
       }
     }
@@ -162,7 +177,14 @@ std::string replayThroughTheCAbi(int threads, uint32_t seed) {
 std::string replayThroughTheCppApi(int threads, uint32_t seed, Mode mode) {
   Simulation sim(threads, seed);
   sim.setMode(mode);
-  sim.addCharacters(Crowd::Mixed, 6);
+  gaitlab::gait::Goal lastGoal[2] = {{Simulation::cruiseSpeed(Kind::Biped), 0},
+                                     {Simulation::cruiseSpeed(Kind::Quadruped), 0}};
+  const auto add = [&](Crowd crowd, int count) {
+    const int added = sim.addCharacters(crowd, count);
+    for (int i = sim.characterCount() - added; i < sim.characterCount(); ++i)
+      sim.setGoal(i, lastGoal[static_cast<int>(sim.kindOf(i))]);
+  };
+  add(Crowd::Mixed, 6);
   int at = 0;
   for (const Command& c : commandLog()) {
     sim.step(c.step - at);
@@ -170,6 +192,7 @@ std::string replayThroughTheCppApi(int threads, uint32_t seed, Mode mode) {
     switch (c.type) {
       case Command::Goal:
         if (c.id < 0 || sim.indexOf(c.id) >= 0) sim.setGoal(c.id < 0 ? -1 : sim.indexOf(c.id), {c.a, c.b});
+        if (c.id < 0) lastGoal[0] = lastGoal[1] = {c.a, c.b};
         break;
       case Command::Throw: sim.throwBox({-3, 1.2, 2}, {9, 1, -1}, 0.12); break;
       case Command::Drag: sim.drag(c.id, 0, {0, 0.1, 0}, {1, 2.5, 1}); break;
@@ -177,10 +200,10 @@ std::string replayThroughTheCppApi(int threads, uint32_t seed, Mode mode) {
       case Command::Reset: sim.resetCharacter(c.id); break;
       case Command::Remove: sim.removeCharacter(c.id); break;
       case Command::Add:
-        sim.addCharacters(c.a == GL_LAYOUT_ALTERNATING ? Crowd::Mixed
-                          : c.a == GL_KIND_BIPED      ? Crowd::Bipeds
-                                                      : Crowd::Quadrupeds,
-                          static_cast<int>(c.b));
+        add(c.a == GL_LAYOUT_ALTERNATING ? Crowd::Mixed
+            : c.a == GL_KIND_BIPED      ? Crowd::Bipeds
+                                        : Crowd::Quadrupeds,
+            static_cast<int>(c.b));
         break;
       case Command::AutoReset: sim.setAutoReset(c.a); break;
     }

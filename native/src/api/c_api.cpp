@@ -45,6 +45,19 @@ double gl_cruise_speed(int kind) {
   return Simulation::cruiseSpeed(static_cast<Kind>(kind));
 }
 
+int gl_sim_add_characters(void* s, int kind, int count) {
+  if (count < 0) return -1;
+  if (kind == GL_LAYOUT_ALTERNATING) return sim(s)->addCharacters(gaitlab::sim::Crowd::Mixed, count);
+  if (kind == GL_KIND_BIPED) return sim(s)->addCharacters(gaitlab::sim::Crowd::Bipeds, count);
+  if (kind == GL_KIND_QUADRUPED) return sim(s)->addCharacters(gaitlab::sim::Crowd::Quadrupeds, count);
+  return -1;
+}
+
+int gl_sim_add_apart(void* s, int kind) {
+  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return -1;
+  return sim(s)->addApart(static_cast<Kind>(kind));
+}
+
 void gl_sim_demo_scene(void* s, int characters) { sim(s)->demoScene(characters); }
 
 void gl_sim_step(void* s, int steps) { sim(s)->step(steps); }

@@ -42,7 +42,23 @@ GL_EXPORT int gl_sim_spawn(void* sim, int kind, double x, double z, double headi
 // for, m/s (sim::Simulation::cruiseSpeed): the demo's start goal; 0 for any other kind.
 GL_EXPORT double gl_cruise_speed(int kind);
 
-// The foundation's demo scene: `characters` figures on a grid plus a few boxes.
+// The demo page's scene layout (native/src/sim/scene_layout.h): a grid facing +z, 2.5 m across
+// and 3 m deep, centred on the origin. The first call sizes the grid for its `count`; later calls
+// continue in the next free places, in rows behind the first (−z). `kind` is GL_KIND_BIPED,
+// GL_KIND_QUADRUPED, or GL_LAYOUT_ALTERNATING (biped and quadruped in turn, a biped first); each
+// character starts walking forward at its kind's cruise speed (gl_cruise_speed). Returns how many
+// were added (fewer than `count` once the render buffer is full; they are the last characters of
+// gl_sim_character_info), or -1 if the kind is not one of those or `count` is negative.
+enum { GL_LAYOUT_ALTERNATING = 3 };
+GL_EXPORT int gl_sim_add_characters(void* sim, int kind, int count);
+
+// Adds one character of `kind` (GL_KIND_BIPED or GL_KIND_QUADRUPED) at the layout's place apart,
+// 5 m left (−x) of the grid level with its middle row, where it can be watched alone (the
+// optimize panel's learner). No goal is set. Returns its id, or -1 as gl_sim_spawn.
+GL_EXPORT int gl_sim_add_apart(void* sim, int kind);
+
+// The demo page's scene: gl_sim_add_characters(sim, GL_LAYOUT_ALTERNATING, characters) on a new
+// simulation, plus a few boxes dropped at places drawn from the seed.
 GL_EXPORT void gl_sim_demo_scene(void* sim, int characters);
 
 // Advances the simulation by `steps` fixed steps of 1/120 s, then publishes render transforms.

@@ -1,6 +1,6 @@
-// Render transforms shared with the browser's main thread through WASM memory (DESIGN.md, data
-// flow step 2-3). The sim worker writes; the main thread reads the newest complete frame straight
-// out of the SharedArrayBuffer: no message and no copy on the way.
+// Render transforms shared with the browser's main thread through WASM memory (README.md,
+// architecture). The sim worker writes (sim/render_publisher.h); the main thread reads the newest
+// complete frame straight out of the SharedArrayBuffer: no message and no copy on the way.
 //
 // Two frame buffers: the writer increments `seq`, fills the buffer that is not `front`, sets
 // `front` to it and increments `seq` again. A reader notes `seq`, then reads `front` and that

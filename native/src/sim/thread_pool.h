@@ -2,7 +2,7 @@
 // "parallel-for paradigm for non-intrusive data parallel execution", §4.3: contiguous chunks,
 // the first N mod T chunks one larger).
 //
-// Hot-path rules (DESIGN.md, parallel execution): threads are created once; a parallelFor does
+// Hot-path rules (docs/parallel.md): threads are created once; a parallelFor does
 // no heap allocation and takes no lock while the workers are awake. Idle workers spin briefly
 // (yielding) and then sleep on a condition variable, so an idle simulation costs no CPU; only
 // waking a sleeping worker takes the mutex.

@@ -1,5 +1,6 @@
-// The per-step hot path allocates nothing (DESIGN.md, parallel execution; the original allocated
-// inside its parallel region every step: REFERENCE.md defect 10). Counted here: C++ operator new
+// The per-step hot path allocates nothing (docs/parallel.md; the original allocated inside its
+// parallel region every step: defect 10 of the original implementation,
+// docs/original-implementation.md). Counted here: C++ operator new
 // (our code, Eigen, std::) and Bullet's btAlignedAlloc, over steps after a warm-up in which Bullet's
 // contact pools and arrays have grown to the scene's size, in every execution mode.
 #include <gtest/gtest.h>

@@ -92,7 +92,7 @@ TEST(Modes, CrowdIsOnAGridWellApartInContiguousShards) {
   EXPECT_EQ(lastShard, 2);
 }
 
-// The benchmark's crowd walks (issue 4: numbers only mean something for characters that walk):
+// The benchmark's crowd walks (its numbers only mean something for characters that walk):
 // every character advances at about its type's cruise speed and none falls, although the crowd
 // starts out of step (each character at its own gait phase).
 TEST(Modes, TheBenchmarkCrowdWalksOutOfStep) {

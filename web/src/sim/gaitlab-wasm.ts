@@ -14,6 +14,8 @@ export interface GaitlabModule {
   _gl_sim_destroy(sim: number): void;
   _gl_sim_spawn(sim: number, kind: number, x: number, z: number, heading: number): number;
   _gl_sim_demo_scene(sim: number, characters: number): void;
+  _gl_sim_add_characters(sim: number, kind: number, count: number): number;
+  _gl_sim_add_apart(sim: number, kind: number): number;
   _gl_cruise_speed(kind: number): number;
   _gl_sim_step(sim: number, steps: number): void;
   _gl_sim_time(sim: number): number;
@@ -84,6 +86,8 @@ export type GaitlabFactory = (options?: GaitlabModuleOptions) => Promise<Gaitlab
 
 /** Kinds for gl_sim_spawn. */
 export const Kind = { biped: 0, quadruped: 1, box: 2 } as const;
+/** gl_sim_add_characters' kind for bipeds and quadrupeds in turn (GL_LAYOUT_ALTERNATING). */
+export const ALTERNATING = 3;
 
 /** Loads the ES6 build from `url` (absolute, or relative to the calling module's origin). */
 export async function loadGaitlab(url: string, options: GaitlabModuleOptions = {}): Promise<GaitlabModule> {
@@ -126,6 +130,20 @@ export class Simulation {
 
   spawn(kind: number, x: number, z: number, heading: number): number {
     return this.module._gl_sim_spawn(this.sim, kind, x, z, heading);
+  }
+
+  /**
+   * `count` characters in the next free places of the scene's layout (the first call sizes its
+   * grid), walking at their cruise speed. Returns how many were added (the last characters of
+   * characterInfo()), or -1 for a kind that is neither Kind.biped, Kind.quadruped nor ALTERNATING.
+   */
+  addCharacters(kind: number, count: number): number {
+    return this.module._gl_sim_add_characters(this.sim, kind, count);
+  }
+
+  /** One character at the layout's place apart, left of the grid. Its id, or -1. */
+  addApart(kind: number): number {
+    return this.module._gl_sim_add_apart(this.sim, kind);
   }
 
   /** Advances `steps` fixed steps of 1/120 s and publishes render transforms. */

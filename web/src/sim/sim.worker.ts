@@ -5,7 +5,7 @@
 // This worker is also the Emscripten "main thread" of the module, so the module's pthread pool
 // consists of workers nested in this one.
 import { FixedStepClock } from './fixed-step-clock';
-import { gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
+import { ALTERNATING, gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
 import type { TerrainKind } from './terrain-grid';
 import { CHARACTER_TYPES } from '../share/gait-file';
 import {
@@ -79,11 +79,6 @@ const commandLog: { step: number; command: SceneCommand }[] = [];
 const COMMAND_LOG_LIMIT = 10_000;
 let commandsApplied = 0;
 
-/** Crowd layout: a grid facing +z; added characters take the next free places. */
-const SPACING_X = 2.5;
-const SPACING_Z = 3;
-let gridColumns = 1;
-let nextSlot = 0;
 /**
  * The goal each type starts with: its cruise speed (gl_cruise_speed, the speed its preset is
  * benchmarked at; a 0.49 m dog walks slower than a 1.8 m human), set once the module is loaded.
@@ -101,11 +96,10 @@ const typeGaits: Partial<Record<CharacterType, string>> = {};
 
 /**
  * The optimize panel's learner (scene command 'learner'): its id, the command that made it
- * (replayed to start it over), and the simulated time it started. It stands this far to the
- * left (−x) of the crowd's grid, level with its middle row: apart, so it can be watched alone.
+ * (replayed to start it over), and the simulated time it started. It stands at the scene
+ * layout's place apart, left of the crowd's grid (gl_sim_add_apart), so it can be watched alone.
  */
 let learner: { id: number; command: Extract<SceneCommand, { type: 'learner' }>; since: number } | null = null;
-const LEARNER_GAP = 5;
 /** A new learner (so a new id) is reported at once, not at the next 4 Hz report. */
 let learnerChanged = false;
 
@@ -131,14 +125,13 @@ function newScene(): void {
   sim = new Simulation(module, options.threads, options.seed);
   // The ground first, so that the characters are spawned standing on it.
   if (terrain !== 'flat' && !sim.setTerrain(terrain)) terrain = 'flat';
-  gridColumns = Math.max(1, Math.ceil(Math.sqrt(options.characters)));
-  nextSlot = 0;
   pending = [];
   commandLog.length = 0;
   commandsApplied = 0;
   learner = null;
-  // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid.
-  addCharacters(options.characters, (i) => (i % 2 === 0 ? 'biped' : 'quadruped'));
+  // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid
+  // (the first group added sizes the layout's grid).
+  addCharacters(options.characters, ALTERNATING);
   sim.setAutoReset(autoResetSeconds);
   // What the new scene keeps from the session (goal, auto-reset, gaits of a whole type) opens
   // its command log, so that the log alone with the seed still replays the run.
@@ -182,18 +175,18 @@ function postTerrain(): void {
   scope.postMessage({ type: 'terrain', generation, grid }, grid.heights ? [grid.heights.buffer] : []);
 }
 
-/** Places `count` characters on the next free grid places, centred on the origin. */
-function addCharacters(count: number, type: (i: number) => 'biped' | 'quadruped'): void {
-  if (!sim || !options) return;
-  const rows = Math.max(1, Math.ceil(options.characters / gridColumns));
-  for (let i = 0; i < count; i++) {
-    const slot = nextSlot++;
-    const x = ((slot % gridColumns) - (gridColumns - 1) / 2) * SPACING_X;
-    // Rows beyond the initial crowd continue behind it (−z), away from where the crowd walks.
-    const z = ((rows - 1) / 2 - Math.floor(slot / gridColumns)) * SPACING_Z;
-    const kind = type(i);
-    const id = sim.spawn(Kind[kind], x, z, 0);
-    if (id < 0) break; // the render buffer is full
+/**
+ * Adds `count` characters in the next free places of the scene's layout (gl_sim_add_characters,
+ * which places them and stops when the render buffer is full), then gives each its type's goal
+ * and gait of this session.
+ */
+function addCharacters(count: number, kindCode: number): void {
+  if (!sim) return;
+  const added = Math.max(0, sim.addCharacters(kindCode, count));
+  const info = sim.characterInfo(); // the added characters are the last ones
+  for (let o = info.length - added * INFO.fields; o < info.length; o += INFO.fields) {
+    const id = info[o + INFO.id];
+    const kind: CharacterType = info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped';
     sim.setGoal(id, lastGoals[kind].speed, lastGoals[kind].turn);
     const gait = typeGaits[kind];
     if (gait && sim.setParams(id, Kind[kind], gait)) delete typeGaits[kind]; // refused: back to the preset
@@ -234,7 +227,7 @@ function apply(command: SceneCommand): void {
       if (learner?.id === command.id) learner = null;
       return;
     case 'add':
-      addCharacters(Math.max(0, Math.min(64, Math.floor(command.count))), () => command.kind);
+      addCharacters(Math.max(0, Math.min(64, Math.floor(command.count))), Kind[command.kind]);
       return;
     case 'autoReset':
       autoResetSeconds = Math.max(0, command.seconds);
@@ -249,8 +242,7 @@ function apply(command: SceneCommand): void {
     case 'learner': {
       if (learner) sim.removeCharacter(learner.id);
       learner = null;
-      const x = -((gridColumns - 1) / 2) * SPACING_X - LEARNER_GAP;
-      const id = sim.spawn(Kind[command.character], x, 0, 0);
+      const id = sim.addApart(Kind[command.character]);
       if (id < 0) {
         post({ type: 'commandError', message: 'the learner was not added: the scene is full' });
         return;

@@ -23,13 +23,24 @@ function cString(text) {
   return pointer;
 }
 
-/** gl_opt_create with JS values; returns the handle (0 on refusal). */
+/** gl_opt_settings's fields (c_api.h static_asserts the offsets; tests/wasm/c-api.test.mjs reads them from there). */
+const OPT = { kind: 0, method: 4, candidates: 8, threads: 12, seed: 16, size: 20 };
+
+/** gl_opt_create with JS values, the search's settings struct from gl_opt_defaults; returns the handle (0 on refusal). */
 function create({ kind = KIND.biped, method = 0, candidates = 3, seed = 1, threads = 2, start = null, settings = null }) {
+  const o = Module._malloc(OPT.size);
+  Module._gl_opt_defaults(o);
+  Module.HEAP32[(o + OPT.kind) >> 2] = kind;
+  Module.HEAP32[(o + OPT.method) >> 2] = method;
+  Module.HEAP32[(o + OPT.candidates) >> 2] = candidates;
+  Module.HEAP32[(o + OPT.threads) >> 2] = threads;
+  Module.HEAPU32[(o + OPT.seed) >> 2] = seed;
   const s = settings === null ? 0 : cString(JSON.stringify(settings));
   const p = start === null ? 0 : cString(start);
   try {
-    return Module._gl_opt_create(kind, method, candidates, seed, threads, p, s);
+    return Module._gl_opt_create(o, p, s);
   } finally {
+    Module._free(o);
     if (s) Module._free(s);
     if (p) Module._free(p);
   }

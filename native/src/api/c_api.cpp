@@ -1,66 +1,124 @@
-// The C ABI (c_api.h) over sim::Simulation.
+// The C ABI (c_api.h) over sim::Simulation, optimize::Optimizer and sim::runPoint. Every refusal
+// goes through refuse(), which sets gl_last_error's message; see the contract in c_api.h.
 #include "api/c_api.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "api/cli_bench.h"
+#include "api/handles.h"
 #include "gait/defaults.h"
 #include "gait/heading.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
+#include "optimize/settings.h"
 #include "sim/simulation.h"
 
+using gaitlab::api::SimHandle;
 using gaitlab::sim::Kind;
 using gaitlab::sim::Simulation;
 
 namespace {
-Simulation* sim(void* handle) { return static_cast<Simulation*>(handle); }
-thread_local std::string g_string;  // backing store for returned strings
+
+thread_local std::string g_error;  // gl_last_error()
+
+// A refusal: the message names what was refused; the value is what the function returns then
+// (a negative GL_ERR_* code, nullptr, or NaN).
+template <class T>
+T refuse(T value, std::string message) {
+  g_error = std::move(message);
+  return value;
+}
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+SimHandle* handle(void* h) { return static_cast<SimHandle*>(h); }
+Simulation* sim(void* h) { return &handle(h)->simulation; }
+
+int clampThreads(int threads) { return std::clamp(threads, 1, GL_MAX_THREADS); }
+
+bool isFinite(double v) { return std::isfinite(v); }
+bool isFinite(const double (&v)[3]) { return isFinite(v[0]) && isFinite(v[1]) && isFinite(v[2]); }
+
+std::string str(int v) { return std::to_string(v); }
+std::string str(double v) { return nlohmann::json(v).dump(); }
+
+bool characterKind(int kind, gaitlab::gait::Character* c) {
+  if (kind == GL_KIND_BIPED) *c = gaitlab::gait::Character::Biped;
+  else if (kind == GL_KIND_QUADRUPED) *c = gaitlab::gait::Character::Quadruped;
+  else return false;
+  return true;
+}
+std::string notACharacter(int kind) {
+  return "kind: " + str(kind) + " is not GL_KIND_BIPED or GL_KIND_QUADRUPED";
+}
+std::string noCharacter(int id) { return "id: no character has id " + str(id); }
+
+bool benchLegs(int legs) { return legs == GL_LEGS_MIXED || legs == GL_LEGS_BIPED || legs == GL_LEGS_QUADRUPED; }
+std::string notLegs(int legs) { return "legs: " + str(legs) + " is not 0 (mixed), 2 or 4"; }
+
 }  // namespace
 
 extern "C" {
 
+const char* gl_last_error(void) { return g_error.c_str(); }
+
 const char* gl_version(void) { return GAITLAB_VERSION; }
 
-void* gl_sim_create(int threads, uint32_t seed) {
-  if (threads < 1) threads = 1;
-  if (threads > GL_MAX_THREADS) threads = GL_MAX_THREADS;
-  return new Simulation(threads, seed);
-}
+int gl_max_threads(void) { return GL_MAX_THREADS; }
 
-void gl_sim_destroy(void* s) { delete sim(s); }
+// ---- Simulation ----------------------------------------------------------------------------
+
+void* gl_sim_create(int threads, uint32_t seed) { return new SimHandle(clampThreads(threads), seed); }
+
+void gl_sim_destroy(void* s) { delete handle(s); }
 
 int gl_sim_spawn(void* s, int kind, double x, double z, double heading) {
-  if (kind < GL_KIND_BIPED || kind > GL_KIND_BOX) return -1;
-  return sim(s)->spawn(static_cast<Kind>(kind), x, z, heading);
+  if (kind < GL_KIND_BIPED || kind > GL_KIND_BOX)
+    return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_KIND_BIPED, GL_KIND_QUADRUPED or GL_KIND_BOX");
+  if (!isFinite(x) || !isFinite(z) || !isFinite(heading))
+    return refuse(GL_ERR_ARGUMENT, "position and heading: (" + str(x) + ", " + str(z) + ", " + str(heading) +
+                                       ") are not all finite");
+  const int id = sim(s)->spawn(static_cast<Kind>(kind), x, z, heading);
+  if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
+  return id;
 }
 
 double gl_cruise_speed(int kind) {
-  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return 0.0;
+  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(kNaN, notACharacter(kind));
   return Simulation::cruiseSpeed(static_cast<Kind>(kind));
 }
 
 int gl_sim_add_characters(void* s, int kind, int count) {
-  if (count < 0) return -1;
+  if (count < 0) return refuse(GL_ERR_ARGUMENT, "count: " + str(count) + " is negative");
   if (kind == GL_LAYOUT_ALTERNATING) return sim(s)->addCharacters(gaitlab::sim::Crowd::Mixed, count);
   if (kind == GL_KIND_BIPED) return sim(s)->addCharacters(gaitlab::sim::Crowd::Bipeds, count);
   if (kind == GL_KIND_QUADRUPED) return sim(s)->addCharacters(gaitlab::sim::Crowd::Quadrupeds, count);
-  return -1;
+  return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_KIND_BIPED, GL_KIND_QUADRUPED or GL_LAYOUT_ALTERNATING");
 }
 
 int gl_sim_add_apart(void* s, int kind) {
-  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return -1;
-  return sim(s)->addApart(static_cast<Kind>(kind));
+  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(GL_ERR_ARGUMENT, notACharacter(kind));
+  const int id = sim(s)->addApart(static_cast<Kind>(kind));
+  if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
+  return id;
 }
 
-void gl_sim_demo_scene(void* s, int characters) { sim(s)->demoScene(characters); }
+int gl_sim_demo_scene(void* s, int characters) {
+  if (characters < 0) return refuse(GL_ERR_ARGUMENT, "characters: " + str(characters) + " is negative");
+  sim(s)->demoScene(characters);
+  return GL_OK;
+}
 
-void gl_sim_step(void* s, int steps) { sim(s)->step(steps); }
+int gl_sim_step(void* s, int steps) {
+  if (steps < 0) return refuse(GL_ERR_ARGUMENT, "steps: " + str(steps) + " is negative");
+  sim(s)->step(steps);
+  return GL_OK;
+}
 
 double gl_sim_time(void* s) { return sim(s)->time(); }
 
@@ -71,50 +129,121 @@ int gl_sim_body_count(void* s) { return sim(s)->bodyCount(); }
 int gl_sim_threads(void* s) { return sim(s)->threads(); }
 
 const char* gl_sim_state_hash(void* s) {
-  g_string = sim(s)->stateHash();
-  return g_string.c_str();
+  handle(s)->text = sim(s)->stateHash();
+  return handle(s)->text.c_str();
 }
 
 const void* gl_sim_render_buffer(void* s) { return sim(s)->renderBuffer(); }
 
-// ---- Interaction: the demo page's commands (issue 5) --------------------------------------------
+// ---- Gait parameters -------------------------------------------------------------------------
+
+const char* gl_schema_json(void) {
+  static const std::string schema = gaitlab::gait::schemaJson();
+  return schema.c_str();
+}
+
+const char* gl_preset_json(int kind) {
+  gaitlab::gait::Character c;
+  if (!characterKind(kind, &c)) return refuse<const char*>(nullptr, notACharacter(kind));
+  return gaitlab::gait::presetText(c);
+}
+
+int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
+  using namespace gaitlab::gait;
+  Character c;
+  if (!characterKind(kind, &c)) return refuse(GL_ERR_KIND, notACharacter(kind));
+  Simulation& simulation = *sim(s);
+  std::vector<int> targets;
+  if (characterId < 0) {
+    for (int i = 0; i < simulation.characterCount(); ++i) {
+      if (characterOf(simulation.character(i).morphology()) == c) targets.push_back(i);
+    }
+    if (targets.empty()) return refuse(GL_ERR_NO_CHARACTER, std::string("id: -1, and no ") + characterName(c) + " is in the simulation");
+  } else {
+    const int i = simulation.characterIndex(characterId);
+    if (i < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(characterId));
+    if (characterOf(simulation.character(i).morphology()) != c)
+      return refuse(GL_ERR_KIND, "kind: character " + str(characterId) + " is not a " + characterName(c));
+    targets.push_back(i);
+  }
+  GaitFile file;
+  if (const auto error = parseGaitFile(text ? text : "", c, &file))
+    return refuse(GL_ERR_INVALID_PARAMS, error->describe());
+  for (int i : targets) simulation.controller(i).setParams(file.params);
+  return GL_OK;
+}
+
+const char* gl_sim_get_params(void* s, int characterId) {
+  using namespace gaitlab::gait;
+  const Simulation& simulation = *sim(s);
+  const int i = simulation.characterIndex(characterId);
+  if (i < 0) return refuse<const char*>(nullptr, noCharacter(characterId));
+  handle(s)->text = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).params());
+  return handle(s)->text.c_str();
+}
+
+// ---- Interaction: the demo page's commands --------------------------------------------------
 
 int gl_sim_set_goal(void* s, int id, double speed, double turn_rate) {
+  if (!isFinite(speed) || !isFinite(turn_rate))
+    return refuse(GL_ERR_ARGUMENT, "goal: speed " + str(speed) + " and turn rate " + str(turn_rate) + " are not both finite");
   const gaitlab::gait::Goal goal{speed, turn_rate};
   if (id == -1) {
     sim(s)->setGoal(-1, goal);
-    return 0;
+    return GL_OK;
   }
   const int i = sim(s)->indexOf(id);
-  if (i < 0) return -1;
+  if (i < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(id));
   sim(s)->setGoal(i, goal);
-  return 0;
+  return GL_OK;
 }
 
-int gl_sim_throw_box(void* s, double x, double y, double z, double vx, double vy, double vz,
-                     double half) {
-  half = std::clamp(half, 0.03, 0.5);
-  return sim(s)->throwBox({x, y, z}, {vx, vy, vz}, half);
+void gl_throw_defaults(gl_throw_settings* t) { *t = gl_throw_settings{{0, 1, 0}, {0, 0, 0}, 0.12}; }
+
+int gl_sim_throw_box(void* s, const gl_throw_settings* t) {
+  if (!isFinite(t->from) || !isFinite(t->velocity))
+    return refuse(GL_ERR_ARGUMENT, "from and velocity: not every coordinate is finite");
+  if (!(t->half >= 0.03 && t->half <= 0.5))
+    return refuse(GL_ERR_ARGUMENT, "half: " + str(t->half) + " is outside [0.03, 0.5] m");
+  const int id = sim(s)->throwBox({t->from[0], t->from[1], t->from[2]},
+                                  {t->velocity[0], t->velocity[1], t->velocity[2]}, t->half);
+  if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
+  return id;
 }
 
-int gl_sim_drag(void* s, int id, int segment, double lx, double ly, double lz, double tx,
-                double ty, double tz) {
-  return sim(s)->drag(id, segment, {lx, ly, lz}, {tx, ty, tz}) ? 0 : -1;
+void gl_drag_defaults(gl_drag_settings* d) { *d = gl_drag_settings{-1, 0, {0, 0, 0}, {0, 0, 0}}; }
+
+int gl_sim_drag(void* s, const gl_drag_settings* d) {
+  if (!isFinite(d->local) || !isFinite(d->target))
+    return refuse(GL_ERR_ARGUMENT, "local and target: not every coordinate is finite");
+  if (sim(s)->indexOf(d->id) < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(d->id));
+  if (!sim(s)->drag(d->id, d->segment, {d->local[0], d->local[1], d->local[2]},
+                    {d->target[0], d->target[1], d->target[2]}))
+    return refuse(GL_ERR_ARGUMENT, "segment: character " + str(d->id) + " has no segment " + str(d->segment));
+  return GL_OK;
 }
 
 void gl_sim_end_drag(void* s) { sim(s)->endDrag(); }
 
-int gl_sim_reset_character(void* s, int id) { return sim(s)->resetCharacter(id) ? 0 : -1; }
+int gl_sim_reset_character(void* s, int id) {
+  return sim(s)->resetCharacter(id) ? GL_OK : refuse(GL_ERR_NO_CHARACTER, noCharacter(id));
+}
 
-int gl_sim_remove_character(void* s, int id) { return sim(s)->removeCharacter(id) ? 0 : -1; }
+int gl_sim_remove_character(void* s, int id) {
+  return sim(s)->removeCharacter(id) ? GL_OK : refuse(GL_ERR_NO_CHARACTER, noCharacter(id));
+}
 
-void gl_sim_set_auto_reset(void* s, double seconds) {
-  sim(s)->setAutoReset(std::max(0.0, seconds));
+int gl_sim_set_auto_reset(void* s, double seconds) {
+  if (!(seconds >= 0) || !isFinite(seconds))
+    return refuse(GL_ERR_ARGUMENT, "seconds: " + str(seconds) + " is not a time >= 0");
+  sim(s)->setAutoReset(seconds);
+  return GL_OK;
 }
 
 int gl_sim_character_count(void* s) { return sim(s)->characterCount(); }
 
 int gl_sim_character_info(void* s, double* out, int capacity) {
+  if (capacity < 0) return refuse(GL_ERR_ARGUMENT, "capacity: " + str(capacity) + " is negative");
   Simulation& S = *sim(s);
   const int n = S.characterCount();
   for (int i = 0; i < std::min(n, capacity); ++i) {
@@ -140,9 +269,10 @@ int gl_sim_character_info(void* s, double* out, int capacity) {
 // ---- Terrain --------------------------------------------------------------------------------
 
 int gl_sim_set_terrain(void* s, int kind) {
-  if (kind < GL_TERRAIN_FLAT || kind > GL_TERRAIN_BUMPS) return -1;
+  if (kind < GL_TERRAIN_FLAT || kind > GL_TERRAIN_BUMPS)
+    return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_TERRAIN_FLAT, GL_TERRAIN_SLOPE or GL_TERRAIN_BUMPS");
   sim(s)->setTerrain(static_cast<gaitlab::physics::TerrainKind>(kind));
-  return 0;
+  return GL_OK;
 }
 
 void gl_sim_terrain_grid(void* s, double* out) {
@@ -161,75 +291,9 @@ const float* gl_sim_terrain_heights(void* s) {
   return t.flat() ? nullptr : t.heights().data();
 }
 
-double gl_sim_ground_height(void* s, double x, double z) { return sim(s)->groundHeight(x, z); }
-
-}  // extern "C"
-
-// ---- Gait parameters: schema, presets, gait files ----------------------------------------------
-
-namespace {
-thread_local std::string g_error;  // gl_last_error()
-
-int fail(int code, std::string message) {
-  g_error = std::move(message);
-  return code;
-}
-
-bool characterKind(int kind, gaitlab::gait::Character* c) {
-  if (kind == GL_KIND_BIPED) *c = gaitlab::gait::Character::Biped;
-  else if (kind == GL_KIND_QUADRUPED) *c = gaitlab::gait::Character::Quadruped;
-  else return false;
-  return true;
-}
-}  // namespace
-
-extern "C" {
-
-const char* gl_last_error(void) { return g_error.c_str(); }
-
-const char* gl_schema_json(void) {
-  static const std::string schema = gaitlab::gait::schemaJson();
-  return schema.c_str();
-}
-
-const char* gl_preset_json(int kind) {
-  gaitlab::gait::Character c;
-  return characterKind(kind, &c) ? gaitlab::gait::presetText(c) : nullptr;
-}
-
-int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
-  using namespace gaitlab::gait;
-  Character c;
-  if (!characterKind(kind, &c)) return fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
-  Simulation& simulation = *sim(s);
-  std::vector<int> targets;
-  if (characterId < 0) {
-    for (int i = 0; i < simulation.characterCount(); ++i) {
-      if (characterOf(simulation.character(i).morphology()) == c) targets.push_back(i);
-    }
-    if (targets.empty()) return fail(GL_ERR_NO_CHARACTER, std::string("no ") + characterName(c) + " in the simulation");
-  } else {
-    const int i = simulation.characterIndex(characterId);
-    if (i < 0) return fail(GL_ERR_NO_CHARACTER, "no character with id " + std::to_string(characterId));
-    if (characterOf(simulation.character(i).morphology()) != c)
-      return fail(GL_ERR_KIND, "character " + std::to_string(characterId) + " is not a " + characterName(c));
-    targets.push_back(i);
-  }
-  GaitFile file;
-  if (const auto error = parseGaitFile(text ? text : "", c, &file))
-    return fail(GL_ERR_INVALID_PARAMS, error->describe());
-  for (int i : targets) simulation.controller(i).setParams(file.params);
-  g_error.clear();
-  return GL_OK;
-}
-
-const char* gl_sim_get_params(void* s, int characterId) {
-  using namespace gaitlab::gait;
-  const Simulation& simulation = *sim(s);
-  const int i = simulation.characterIndex(characterId);
-  if (i < 0) return nullptr;
-  g_string = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).params());
-  return g_string.c_str();
+double gl_sim_ground_height(void* s, double x, double z) {
+  if (!isFinite(x) || !isFinite(z)) return refuse(kNaN, "point: (" + str(x) + ", " + str(z) + ") is not finite");
+  return sim(s)->groundHeight(x, z);
 }
 
 }  // extern "C"
@@ -240,111 +304,51 @@ namespace {
 struct OptHandle {
   std::unique_ptr<gaitlab::optimize::Optimizer> optimizer;
   gaitlab::gait::Character character;
-  std::string text;  // gl_opt_best_json's backing store
+  std::string text;  // gl_opt_best_json's result
 };
 OptHandle* opt(void* handle) { return static_cast<OptHandle*>(handle); }
 }  // namespace
 
 extern "C" {
 
-void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
-                    const char* startJson, const char* settingsJson) {
+void gl_opt_defaults(gl_opt_settings* o) {
+  const gaitlab::optimize::SearchOptions d;
+  *o = gl_opt_settings{GL_KIND_BIPED, GL_METHOD_GREEDY, d.candidates, d.threads, static_cast<uint32_t>(d.seed)};
+}
+
+void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, const char* objectiveJson) {
   using namespace gaitlab;
   gait::Character c;
-  if (!characterKind(kind, &c)) {
-    fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
-    return nullptr;
-  }
+  if (!characterKind(settings->kind, &c)) return refuse<void*>(nullptr, notACharacter(settings->kind));
+  if (settings->method != GL_METHOD_GREEDY && settings->method != GL_METHOD_CMAES)
+    return refuse<void*>(nullptr, "method: " + str(settings->method) + " is not GL_METHOD_GREEDY or GL_METHOD_CMAES");
+  if (settings->candidates < optimize::kMinCandidates || settings->candidates > optimize::kMaxCandidates)
+    return refuse<void*>(nullptr, "candidates: " + str(settings->candidates) + " is outside [" +
+                                      str(optimize::kMinCandidates) + ", " + str(optimize::kMaxCandidates) + "]");
   optimize::SearchOptions o;
   o.character = c;
-  o.method = method == 1 ? optimize::Method::CmaEs : optimize::Method::Greedy;
-  o.candidates = candidates < 2 ? 2 : candidates;
-  o.seed = seed;
-  o.threads = threads < 1 ? 1 : threads > GL_MAX_THREADS ? GL_MAX_THREADS : threads;
+  o.method = settings->method == GL_METHOD_CMAES ? optimize::Method::CmaEs : optimize::Method::Greedy;
+  o.candidates = settings->candidates;
+  o.seed = settings->seed;
+  o.threads = clampThreads(settings->threads);
   gait::GaitFile start;
   start.params = gait::defaultParams(c);
   if (startJson) {
-    if (const auto error = gait::parseGaitFile(startJson, c, &start)) {
-      fail(GL_ERR_INVALID_PARAMS, error->describe());
-      return nullptr;
-    }
+    if (const auto error = gait::parseGaitFile(startJson, c, &start))
+      return refuse<void*>(nullptr, "start: " + error->describe());
   }
-  if (settingsJson) {
-    const nlohmann::json j = nlohmann::json::parse(settingsJson, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) {
-      fail(GL_ERR_INVALID_PARAMS, "objective settings: expected a JSON object");
-      return nullptr;
-    }
-    for (const auto& item : j.items()) {
-      if (item.key() == "speeds") {
-        o.objective.speeds.clear();
-        for (const auto& v : item.value()) {
-          if (!v.is_number()) {
-            fail(GL_ERR_INVALID_PARAMS, "speeds: expected numbers");
-            return nullptr;
-          }
-          const double speed = v.get<double>();
-          if (speed < optimize::kMinGoalSpeed || speed > optimize::kMaxGoalSpeed) {
-            fail(GL_ERR_INVALID_PARAMS, "speeds: " + v.dump() + " is outside [-5, 5] m/s");
-            return nullptr;
-          }
-          o.objective.speeds.push_back(speed);
-        }
-        if (!item.value().is_array() || o.objective.speeds.empty()) {
-          fail(GL_ERR_INVALID_PARAMS, "speeds: expected a non-empty array of numbers");
-          return nullptr;
-        }
-        continue;
-      }
-      if (item.key() == "grounds") {
-        o.objective.grounds.clear();
-        for (const auto& v : item.value()) {
-          optimize::Ground g;
-          const std::string error = v.is_string() ? optimize::parseGround(v.get<std::string>(), &g)
-                                                  : "grounds: expected strings such as \"slope@3.14159\"";
-          if (!error.empty()) {
-            fail(GL_ERR_INVALID_PARAMS, error);
-            return nullptr;
-          }
-          o.objective.grounds.push_back(g);
-        }
-        if (!item.value().is_array() || o.objective.grounds.empty()) {
-          fail(GL_ERR_INVALID_PARAMS, "grounds: expected a non-empty array of strings");
-          return nullptr;
-        }
-        continue;
-      }
-      const std::string error = item.value().is_number()
-                                    ? optimize::setSetting(o.objective, item.key(), item.value().get<double>())
-                                    : item.key() + ": expected a number";
-      if (!error.empty()) {
-        fail(GL_ERR_INVALID_PARAMS, error);
-        return nullptr;
-      }
-    }
+  if (objectiveJson) {
+    const nlohmann::json j = nlohmann::json::parse(objectiveJson, nullptr, false);
+    const std::string error = j.is_discarded() ? "objective settings: expected a JSON object"
+                                               : optimize::readObjectiveSettings(j, &o.objective);
+    if (!error.empty()) return refuse<void*>(nullptr, error);
   }
-  g_error.clear();
   return new OptHandle{optimize::Optimizer::create(o, start.params), c, {}};
 }
 
 const char* gl_opt_settings_json(void) {
-  using namespace gaitlab::optimize;
-  ObjectiveSettings defaults;
-  nlohmann::ordered_json settings = nlohmann::ordered_json::array();
-  forEachSetting(defaults, [&](const SettingSpec& spec, double& value) {
-    settings.push_back({{"name", spec.name}, {"min", spec.min}, {"max", spec.max}, {"default", value},
-                        {"unit", spec.unit}, {"description", spec.description}, {"integer", spec.integer}});
-  });
-  const nlohmann::ordered_json j = {
-      {"settings", settings},
-      {"speeds", {{"min", kMinGoalSpeed}, {"max", kMaxGoalSpeed}, {"default", defaults.speeds}, {"unit", "m/s"},
-                  {"description", "goal speeds: every candidate walks an episode at each"}}},
-      {"grounds", {{"default", nlohmann::ordered_json::array({"flat"})},
-                   {"terrains", nlohmann::ordered_json::array({"flat", "slope", "bumps"})},
-                   {"description", "grounds: every candidate walks an episode on each, written TERRAIN or "
-                                   "TERRAIN@HEADING (rad it starts facing)"}}}};
-  g_string = j.dump();
-  return g_string.c_str();
+  static const std::string table = gaitlab::optimize::objectiveSettingsTableJson();
+  return table.c_str();
 }
 
 void gl_opt_destroy(void* h) { delete opt(h); }
@@ -374,37 +378,54 @@ const char* gl_opt_best_json(void* h) {
 // ---- Benchmark ------------------------------------------------------------------------------
 
 const char* gl_bench_machine(void) {
-  g_string = gaitlab::api::benchJsonMachine().dump();
-  return g_string.c_str();
+  static const std::string machine = gaitlab::api::benchJsonMachine().dump();
+  return machine.c_str();
 }
 
-int gl_bench_max_characters(int legs) { return gaitlab::sim::maxCharacters(legs); }
-
-void gl_bench_warm_up(int legs, int threads) {
-  if (legs != 0 && legs != 2 && legs != 4) return;
-  gaitlab::sim::warmUp({legs}, threads < 1 ? 1 : threads > GL_MAX_THREADS ? GL_MAX_THREADS : threads);
+int gl_bench_max_characters(int legs) {
+  if (!benchLegs(legs)) return refuse(GL_ERR_ARGUMENT, notLegs(legs));
+  return gaitlab::sim::maxCharacters(legs);
 }
 
-const char* gl_bench_point(int legs, int characters, int threads, int mode, int steps, int runs,
-                           int shards, double spacing, uint32_t seed, int frames) {
-  g_string.clear();
-  if ((legs != 0 && legs != 2 && legs != 4) || characters < 1 ||
-      characters > gaitlab::sim::maxCharacters(legs) || mode < 0 ||
-      mode > 2 || steps < 1 || runs < 1 || shards < 1 || shards > 64 || !(spacing >= 2.5))
-    return g_string.c_str();
+int gl_bench_warm_up(int legs, int threads) {
+  if (!benchLegs(legs)) return refuse(GL_ERR_ARGUMENT, notLegs(legs));
+  gaitlab::sim::warmUp({legs}, clampThreads(threads));
+  return GL_OK;
+}
+
+void gl_bench_defaults(gl_bench_settings* b) {
+  const gaitlab::sim::PointSpec d;
+  *b = gl_bench_settings{d.legs, d.characters, d.threads, static_cast<int32_t>(d.mode), d.steps, d.runs,
+                         d.shards, d.seed, d.spacing, d.frames ? 1 : 0};
+}
+
+const char* gl_bench_point(const gl_bench_settings* b) {
+  thread_local std::string point;
+  using gaitlab::sim::maxCharacters;
+  if (!benchLegs(b->legs)) return refuse<const char*>(nullptr, notLegs(b->legs));
+  if (b->characters < 1 || b->characters > maxCharacters(b->legs))
+    return refuse<const char*>(nullptr, "characters: " + str(b->characters) + " is outside [1, " +
+                                            str(maxCharacters(b->legs)) + "] (the most a simulation holds)");
+  if (b->mode < GL_MODE_SERIAL || b->mode > GL_MODE_FULL)
+    return refuse<const char*>(nullptr, "mode: " + str(b->mode) + " is not GL_MODE_SERIAL, GL_MODE_CONTROLLER or GL_MODE_FULL");
+  if (b->steps < 1) return refuse<const char*>(nullptr, "steps: " + str(b->steps) + " is not >= 1");
+  if (b->runs < 1) return refuse<const char*>(nullptr, "runs: " + str(b->runs) + " is not >= 1");
+  if (b->shards < 1 || b->shards > 64) return refuse<const char*>(nullptr, "shards: " + str(b->shards) + " is outside [1, 64]");
+  if (!(b->spacing >= 2.5) || !isFinite(b->spacing))
+    return refuse<const char*>(nullptr, "spacing: " + str(b->spacing) + " is not a distance >= 2.5 m");
   gaitlab::sim::PointSpec s;
-  s.legs = legs;
-  s.characters = characters;
-  s.threads = threads < 1 ? 1 : threads > GL_MAX_THREADS ? GL_MAX_THREADS : threads;
-  s.mode = static_cast<gaitlab::sim::Mode>(mode);
-  s.steps = steps;
-  s.runs = runs;
-  s.shards = shards;
-  s.spacing = spacing;
-  s.seed = seed;
-  s.frames = frames != 0;
-  g_string = gaitlab::api::benchJsonPoint(gaitlab::sim::runPoint(s)).dump();
-  return g_string.c_str();
+  s.legs = b->legs;
+  s.characters = b->characters;
+  s.threads = clampThreads(b->threads);
+  s.mode = static_cast<gaitlab::sim::Mode>(b->mode);
+  s.steps = b->steps;
+  s.runs = b->runs;
+  s.shards = b->shards;
+  s.spacing = b->spacing;
+  s.seed = b->seed;
+  s.frames = b->frames != 0;
+  point = gaitlab::api::benchJsonPoint(gaitlab::sim::runPoint(s)).dump();
+  return point.c_str();
 }
 
 }  // extern "C"

@@ -1,7 +1,39 @@
-// The C ABI gaitlab exports to JavaScript (WASM build) and that native tests also call.
+// The C ABI gaitlab exports to JavaScript (the WASM build) and that the native tests also call.
+// web/src/sim/gaitlab-wasm.ts is its one TypeScript binding.
 //
-// Every function is prefixed `gl_`. A simulation is an opaque handle (a pointer; a number in JS).
-// Strings returned are owned by the library and valid until the next call on the same handle.
+// The contract, for every `gl_` function:
+//
+//   Failure.   A call that refuses its arguments changes nothing and says so by its return value:
+//              - a function returning a pointer (a handle or a string) returns NULL;
+//              - a function returning an int returns a negative GL_ERR_* code (success is >= 0:
+//                GL_OK, an id or a count);
+//              - a function returning a double returns NaN.
+//              Functions returning void, and the other doubles and ints documented as never
+//              failing, cannot refuse anything. After every refusal gl_last_error() is a message
+//              that names what was refused ("kind: 7 is not GL_KIND_BIPED or
+//              GL_KIND_QUADRUPED", "id: no character has id 12", "period: 99.0 is outside
+//              [0.2, 2]"). It is per thread and only meaningful right after a refusal:
+//              successful calls leave it as it was.
+//   Checked.   Ids, kinds, counts, enum values, numbers and JSON text are checked. Thread counts
+//              are not refused but clamped to [1, GL_MAX_THREADS] (gl_sim_threads tells the
+//              count in use). Handles and output arrays are not checked: a handle must come from
+//              its create function and not be destroyed yet, an output array must be as large
+//              as the function says.
+//   Strings.   Returned strings are owned by the library, UTF-8, NUL-terminated. Their lifetime:
+//              - strings that never change (gl_version, gl_schema_json, gl_preset_json,
+//                gl_opt_settings_json, gl_bench_machine) are static: valid for the module's
+//                lifetime, the same pointer every call;
+//              - a simulation's strings (gl_sim_state_hash, gl_sim_get_params) live in that
+//                simulation: valid until the next of those two calls on the same simulation, or
+//                gl_sim_destroy. Calls on other simulations never touch them;
+//              - an optimiser's string (gl_opt_best_json) likewise, until the next
+//                gl_opt_best_json on the same optimiser or gl_opt_destroy;
+//              - gl_bench_point's result, until the next gl_bench_point on the same thread;
+//              - gl_last_error's message, until the next refusal on the same thread.
+//   Settings.  Calls with many arguments take a settings struct: fill it with its gl_*_defaults
+//              function, change the fields wanted, pass its address. Their layouts are pinned by
+//              the static_asserts at the end of this file and mirrored in
+//              web/src/sim/gaitlab-wasm.ts (tests/web/sim/gaitlab-wasm.test.ts compares them).
 #pragma once
 #include <stdint.h>
 
@@ -12,34 +44,58 @@
 #define GL_EXPORT
 #endif
 
+// Most threads a simulation, a search or a benchmark point uses. The WASM build pre-starts a
+// fixed pool of GL_MAX_THREADS - 1 pthread workers (PTHREAD_POOL_SIZE, which
+// native/CMakeLists.txt derives from this line), since a thread's pool holds the calling thread
+// plus threads - 1 workers, and a pthread beyond the pool would need a new Worker, which cannot
+// start while the browser's worker that owns the module is blocked in a step. Thread counts
+// above the hardware's are allowed (the thesis ran 2-4). The page's copy (MAX_THREADS,
+// web/src/sim/protocol.ts) is checked against this line by a test and against
+// gl_max_threads() when the module loads.
+#define GL_MAX_THREADS 5
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-// Library version, "MAJOR.MINOR.PATCH".
+// Error codes: negative, as every int-returning function's refusal.
+enum {
+  GL_OK = 0,
+  GL_ERR_ARGUMENT = -1,        // an argument out of range, not finite, or not one of its values
+  GL_ERR_KIND = -2,            // a kind that is not a character, or a character of another kind
+  GL_ERR_NO_CHARACTER = -3,    // no character with that id, or none of that kind
+  GL_ERR_INVALID_PARAMS = -4,  // a refused gait file or settings object (malformed, bad field...)
+  GL_ERR_FULL = -5,            // the simulation's render buffer has no room left
+};
+
+// The message of the last refusal on the calling thread (see the contract above); never NULL.
+GL_EXPORT const char* gl_last_error(void);
+
+// Library version, "MAJOR.MINOR.PATCH". Static.
 GL_EXPORT const char* gl_version(void);
 
-// Most threads a simulation uses: the WASM build pre-starts GL_MAX_THREADS - 1 pthread workers
-// (PTHREAD_POOL_SIZE), and a thread beyond them could not start while the browser's sim worker
-// is busy stepping. Thread counts above the hardware's are allowed (the thesis ran 2-4).
-#define GL_MAX_THREADS 5
+// GL_MAX_THREADS, for JavaScript.
+GL_EXPORT int gl_max_threads(void);
 
-// A new simulation: flat ground (gl_sim_set_terrain changes it), nothing on it. `threads` is the size of the thread pool used for
-// per-character work, clamped to [1, GL_MAX_THREADS] (gl_sim_threads tells the count in use).
-// `seed` drives every random choice of the scene.
+// ---- Simulation ----------------------------------------------------------------------------
+
+// A new simulation: flat ground (gl_sim_set_terrain changes it), nothing on it. `threads` is the
+// size of the thread pool used for per-character work (clamped). `seed` drives every random
+// choice of the scene. Never fails.
 GL_EXPORT void* gl_sim_create(int threads, uint32_t seed);
-GL_EXPORT void gl_sim_destroy(void* sim);
+GL_EXPORT void gl_sim_destroy(void* sim);  // NULL is allowed
 
 // Kinds of thing that can be spawned. Characters are articulated figures built from a
 // morphology (native/src/body); a prop is a loose box.
 enum { GL_KIND_BIPED = 0, GL_KIND_QUADRUPED = 1, GL_KIND_BOX = 2 };
 
-// Spawns one thing standing on the ground at (x, z), facing `heading` radians (about +y, 0 = +z).
-// Returns its id (>= 0), or -1 if the kind is unknown or the render buffer is full.
+// Spawns one thing standing on the ground at (x, z), facing `heading` radians (about +y,
+// 0 = +z). Returns its id (>= 0); GL_ERR_ARGUMENT for an unknown kind or a position or heading
+// that is not finite, GL_ERR_FULL when the render buffer has no room.
 GL_EXPORT int gl_sim_spawn(void* sim, int kind, double x, double z, double heading);
 
-// The speed a character of `kind` (GL_KIND_BIPED or GL_KIND_QUADRUPED) is tuned and benchmarked
-// for, m/s (sim::Simulation::cruiseSpeed): the demo's start goal; 0 for any other kind.
+// The speed a character of `kind` is tuned and benchmarked for, m/s (sim::Simulation::
+// cruiseSpeed): the demo's start goal. NaN for a kind that is not a character.
 GL_EXPORT double gl_cruise_speed(int kind);
 
 // The demo page's scene layout (native/src/sim/scene_layout.h): a grid facing +z, 2.5 m across
@@ -48,32 +104,37 @@ GL_EXPORT double gl_cruise_speed(int kind);
 // GL_KIND_QUADRUPED, or GL_LAYOUT_ALTERNATING (biped and quadruped in turn, a biped first); each
 // character starts walking forward at its kind's cruise speed (gl_cruise_speed). Returns how many
 // were added (fewer than `count` once the render buffer is full; they are the last characters of
-// gl_sim_character_info), or -1 if the kind is not one of those or `count` is negative.
+// gl_sim_character_info); GL_ERR_ARGUMENT if the kind is not one of those or `count` is negative.
 enum { GL_LAYOUT_ALTERNATING = 3 };
 GL_EXPORT int gl_sim_add_characters(void* sim, int kind, int count);
 
 // Adds one character of `kind` (GL_KIND_BIPED or GL_KIND_QUADRUPED) at the layout's place apart,
 // 5 m left (−x) of the grid level with its middle row, where it can be watched alone (the
-// optimize panel's learner). No goal is set. Returns its id, or -1 as gl_sim_spawn.
+// optimize panel's learner). No goal is set. Returns its id, or an error as gl_sim_spawn.
 GL_EXPORT int gl_sim_add_apart(void* sim, int kind);
 
 // The demo page's scene: gl_sim_add_characters(sim, GL_LAYOUT_ALTERNATING, characters) on a new
-// simulation, plus a few boxes dropped at places drawn from the seed.
-GL_EXPORT void gl_sim_demo_scene(void* sim, int characters);
+// simulation, plus a few boxes dropped at places drawn from the seed. GL_OK, or GL_ERR_ARGUMENT
+// for a negative count.
+GL_EXPORT int gl_sim_demo_scene(void* sim, int characters);
 
-// Advances the simulation by `steps` fixed steps of 1/120 s, then publishes render transforms.
-GL_EXPORT void gl_sim_step(void* sim, int steps);
+// Advances the simulation by `steps` (>= 0) fixed steps of 1/120 s, then publishes render
+// transforms (0 steps publishes the scene as it is). GL_OK, or GL_ERR_ARGUMENT for a negative
+// count.
+GL_EXPORT int gl_sim_step(void* sim, int steps);
 
+// Never fail.
 GL_EXPORT double gl_sim_time(void* sim);           // simulated seconds
 GL_EXPORT uint32_t gl_sim_step_index(void* sim);   // fixed steps taken
 GL_EXPORT int gl_sim_body_count(void* sim);        // rigid bodies (instances to draw)
 GL_EXPORT int gl_sim_threads(void* sim);
 
 // Hex string of a 64-bit hash of every body's position, orientation and velocities (exact bits),
-// so that two runs can be compared for bit-identical state.
+// so that two runs can be compared for bit-identical state. The simulation's string.
 GL_EXPORT const char* gl_sim_state_hash(void* sim);
 
-// Pointer (byte offset into WASM memory) of the render buffer header, see render_buffer.h.
+// Pointer (byte offset into WASM memory) of the render buffer header, see
+// native/src/sim/render_buffer.h. Valid until gl_sim_destroy. Never fails.
 GL_EXPORT const void* gl_sim_render_buffer(void* sim);
 
 // ---- Gait parameters: schema, presets, gait files (native/src/gait/schema.h, params_io.h) ----
@@ -81,92 +142,74 @@ GL_EXPORT const void* gl_sim_render_buffer(void* sim);
 // Gait files are JSON: {"format":"gaitlab-gait","version":1,"character":"biped"|"quadruped",
 // "params":{"<name>": number | [4 numbers], ...},"meta":{...}} (public/presets/*.json).
 
-// Error codes of the parameter functions; gl_last_error() gives the message of the last failure
-// on the calling thread ("FIELD: WHAT" for a refused file).
-enum {
-  GL_OK = 0,
-  GL_ERR_INVALID_PARAMS = 1,  // the file was refused (malformed, wrong character, bad field...)
-  GL_ERR_NO_CHARACTER = 2,    // no character with that id, or none of that kind
-  GL_ERR_KIND = 3,            // kind is not GL_KIND_BIPED or GL_KIND_QUADRUPED, or the
-                              // character with that id is of another kind
-};
-GL_EXPORT const char* gl_last_error(void);
-
 // The parameter schema: {"version":1,"characters":{"biped":[...],"quadruped":[...]}}, an entry
-// per parameter {"name","group","min","max","default","unit","description","knots"}.
+// per parameter {"name","group","min","max","default","unit","description","knots"}. Static.
 GL_EXPORT const char* gl_schema_json(void);
 
-// The shipped preset of a kind, as a gait file; NULL for a kind that is not a character.
+// The shipped preset of a kind, as a gait file. Static; NULL for a kind that is not a character.
 GL_EXPORT const char* gl_preset_json(int kind);
 
 // Validates a gait file for `kind` and gives it to the character with id `characterId` (as
 // returned by gl_sim_spawn), or with characterId = -1 to every character of that kind. Nothing
-// changes unless the whole file is valid. Returns GL_OK or an error code.
+// changes unless the whole file is valid. GL_OK; GL_ERR_KIND, GL_ERR_NO_CHARACTER, or
+// GL_ERR_INVALID_PARAMS ("FIELD: WHAT" for a refused file).
 GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char* json);
 
-// The gait parameters a character is using, as a gait file; NULL if there is no such character.
+// The gait parameters a character is using, as a gait file. The simulation's string; NULL if no
+// character has that id.
 GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
 
-// ---- Optimisation, one generation at a time (native/src/optimize/optimizer.h) ----------------
-//
-// For the browser's optimize panel: create a search, call gl_opt_step once per generation (each
-// runs `candidates` evaluations, a few tenths of a second to seconds), read the best so far.
-
-// A new search. `kind` is GL_KIND_BIPED or GL_KIND_QUADRUPED; `method` 0 = greedy (thesis §3.3),
-// 1 = CMA-ES; `start_json` a gait file to start from, or NULL for the preset; `settings_json`
-// NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,
-// "grounds":["flat","slope@3.14159"],...}, see
-// optimize/objective.h). `threads` is clamped to [1, GL_MAX_THREADS]. Returns NULL on error
-// (gl_last_error() says why).
-GL_EXPORT void* gl_opt_create(int kind, int method, int candidates, uint32_t seed, int threads,
-                              const char* start_json, const char* settings_json);
-GL_EXPORT void gl_opt_destroy(void* opt);
-// The objective settings gl_opt_create accepts, for forms that check them before a search:
-// {"settings":[{"name","min","max","default","unit","description","integer"},...],
-//  "speeds":{"min","max","default":[...],"unit","description"},
-//  "grounds":{"default":["flat"],"terrains":["flat","slope","bumps"],"description"}}
-// (optimize/objective.h).
-GL_EXPORT const char* gl_opt_settings_json(void);
-// Runs one generation; returns the best objective so far.
-GL_EXPORT double gl_opt_step(void* opt);
-GL_EXPORT int gl_opt_generation(void* opt);
-GL_EXPORT int gl_opt_evaluations(void* opt);
-// The best parameters so far as a gait file (meta: method, seed, objective, its terms,
-// generations, evaluations). Valid until the next call on this handle.
-GL_EXPORT const char* gl_opt_best_json(void* opt);
-
-// ---- Interaction: the demo page's commands (issue 5) --------------------------------------------
+// ---- Interaction: the demo page's commands --------------------------------------------------
 // Characters are named by the id gl_sim_spawn returned. The sim worker calls these between
 // fixed steps only (it queues the page's commands and applies them at the start of the next
-// step), so each acts at a known step index. Functions returning int give 0 on success and -1
-// if no character has that id.
+// step), so each acts at a known step index.
 
 // Steering goal of character `id`, or of every character with id = -1: forward speed (m/s) and
-// turn rate (rad/s, about +y, positive = left).
+// turn rate (rad/s, about +y, positive = left). GL_OK; GL_ERR_NO_CHARACTER, or GL_ERR_ARGUMENT
+// for a goal that is not finite.
 GL_EXPORT int gl_sim_set_goal(void* sim, int id, double speed, double turn_rate);
 
-// Throws a box of half size `half` (m) from (x, y, z) with velocity (vx, vy, vz) m/s. It collides
-// with characters, props and the ground; the oldest thrown box goes once there are 32. Returns
-// its id, or -1 if the render buffer is full.
-GL_EXPORT int gl_sim_throw_box(void* sim, double x, double y, double z, double vx, double vy,
-                               double vz, double half);
+// A box thrown into the scene: from `from` (m) with `velocity` (m/s), half size `half` (m).
+typedef struct gl_throw_settings {
+  double from[3];      // default (0, 1, 0)
+  double velocity[3];  // default (0, 0, 0)
+  double half;         // default 0.12; must lie in [0.03, 0.5]
+} gl_throw_settings;
+GL_EXPORT void gl_throw_defaults(gl_throw_settings* settings);
 
-// Holds point (lx, ly, lz) of segment `segment` of character `id` (segment body frame, metres;
-// the segment is the character's n-th body in the render buffer) on a spring towards the world
-// point (tx, ty, tz), every step until gl_sim_end_drag. Calling it again moves the target.
-GL_EXPORT int gl_sim_drag(void* sim, int id, int segment, double lx, double ly, double lz,
-                          double tx, double ty, double tz);
+// Throws a box. It collides with characters, props and the ground; the oldest thrown box goes
+// once there are 32. Returns its id (>= 0); GL_ERR_ARGUMENT for a half size out of range or a
+// value that is not finite, GL_ERR_FULL when the render buffer has no room.
+GL_EXPORT int gl_sim_throw_box(void* sim, const gl_throw_settings* settings);
+
+// A drag: point `local` of segment `segment` of character `id` (segment body frame, metres; the
+// segment is the character's n-th body in the render buffer) held on a spring towards the world
+// point `target`.
+typedef struct gl_drag_settings {
+  int32_t id;        // default -1 (none: must be set)
+  int32_t segment;   // default 0
+  double local[3];   // default (0, 0, 0)
+  double target[3];  // default (0, 0, 0)
+} gl_drag_settings;
+GL_EXPORT void gl_drag_defaults(gl_drag_settings* settings);
+
+// Starts a drag, applied every step until gl_sim_end_drag; calling it again moves the target.
+// GL_OK; GL_ERR_NO_CHARACTER, or GL_ERR_ARGUMENT for a segment the character does not have or a
+// point that is not finite.
+GL_EXPORT int gl_sim_drag(void* sim, const gl_drag_settings* settings);
 GL_EXPORT void gl_sim_end_drag(void* sim);
 
-// Replaces character `id` by a fresh one standing where it is, same gait and goal.
+// Replaces character `id` by a fresh one standing where it is, same gait and goal; removes it.
+// GL_OK, or GL_ERR_NO_CHARACTER.
 GL_EXPORT int gl_sim_reset_character(void* sim, int id);
 GL_EXPORT int gl_sim_remove_character(void* sim, int id);
 
 // Characters fallen for `seconds` (leg frame below half its standing height or tilted over 60°)
-// are reset automatically; 0 turns it off.
-GL_EXPORT void gl_sim_set_auto_reset(void* sim, double seconds);
+// are reset automatically; 0 turns it off. GL_OK, or GL_ERR_ARGUMENT for a negative or
+// non-finite time.
+GL_EXPORT int gl_sim_set_auto_reset(void* sim, double seconds);
 
-GL_EXPORT int gl_sim_character_count(void* sim);
+GL_EXPORT int gl_sim_character_count(void* sim);  // never fails
 
 // Fields per character written by gl_sim_character_info, in this order.
 enum {
@@ -180,10 +223,11 @@ enum {
   GL_INFO_FIELDS
 };
 // Writes GL_INFO_FIELDS doubles per character for at most `capacity` characters into `out`;
-// returns the number of characters (which may exceed `capacity`).
+// returns the number of characters (which may exceed `capacity`), or GL_ERR_ARGUMENT for a
+// negative capacity.
 GL_EXPORT int gl_sim_character_info(void* sim, double* out, int capacity);
 
-// ---- Terrain: the ground (native/src/physics/terrain.h; issue 5's ground choice) ---------------
+// ---- Terrain: the ground (native/src/physics/terrain.h) ---------------------------------------
 // A terrain is a square grid of height samples joined by triangles, with a flat plane beyond it.
 // The page draws its ground from the same samples the physics collides with.
 
@@ -192,7 +236,7 @@ enum { GL_TERRAIN_FLAT = 0, GL_TERRAIN_SLOPE = 1, GL_TERRAIN_BUMPS = 2 };
 // Sets the ground of every physics shard: flat, a ±5° ridge-and-valley slope across +z, or
 // 2-3 cm bumps drawn from the simulation's seed. Characters already in the scene are re-placed
 // standing on the new ground where they are (same gait and goal), props lifted out of it.
-// Returns 0, or -1 for an unknown kind (nothing changes).
+// GL_OK, or GL_ERR_ARGUMENT for an unknown kind.
 GL_EXPORT int gl_sim_set_terrain(void* sim, int kind);
 
 // Fields written by gl_sim_terrain_grid, in this order.
@@ -206,42 +250,127 @@ enum {
   GL_GRID_PLANE,     // height of the flat ground beyond the grid (everywhere when flat)
   GL_GRID_FIELDS
 };
-// Writes GL_GRID_FIELDS doubles describing the terrain's grid into `out`.
+// Writes GL_GRID_FIELDS doubles describing the terrain's grid into `out`. Never fails.
 GL_EXPORT void gl_sim_terrain_grid(void* sim, double* out);
 
 // The samples: columns × rows floats, row-major (sample (c, r) at index r·columns + c, at
 // x = origin_x + c·spacing, z = origin_z + r·spacing). Each grid cell is two triangles split along
-// the diagonal from (c+1, r) to (c, r+1), as Bullet's heightfield splits it. NULL when flat.
-// Owned by the simulation; valid until the terrain changes or the simulation is destroyed.
+// the diagonal from (c+1, r) to (c, r+1), as Bullet's heightfield splits it. Owned by the
+// simulation; valid until the terrain changes or the simulation is destroyed. NULL when flat
+// (there are no samples: this is not a refusal).
 GL_EXPORT const float* gl_sim_terrain_heights(void* sim);
 
 // Height of the ground under (x, z) as the controller sees it: a ray cast against the terrain.
+// NaN for a point that is not finite.
 GL_EXPORT double gl_sim_ground_height(void* sim, double x, double z);
+
+// ---- Optimisation, one generation at a time (native/src/optimize/optimizer.h) ----------------
+//
+// For the browser's optimize panel: create a search, call gl_opt_step once per generation (each
+// runs `candidates` evaluations, a few tenths of a second to seconds), read the best so far.
+
+enum { GL_METHOD_GREEDY = 0, GL_METHOD_CMAES = 1 };
+
+// The search's own settings; the objective's are a JSON object (gl_opt_create).
+typedef struct gl_opt_settings {
+  int32_t kind;        // GL_KIND_BIPED (default) or GL_KIND_QUADRUPED
+  int32_t method;      // GL_METHOD_GREEDY (default, thesis §3.3) or GL_METHOD_CMAES
+  int32_t candidates;  // evaluations per generation, [2, 1000]; default 10
+  int32_t threads;     // evaluations in parallel (clamped); default 1
+  uint32_t seed;       // the same seed gives the same search; default 1
+} gl_opt_settings;
+GL_EXPORT void gl_opt_defaults(gl_opt_settings* settings);
+
+// A new search. `start_json` a gait file to start from, or NULL for the preset; `objective_json`
+// NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,
+// "grounds":["flat","slope@3.14159"],...}, read by optimize::readObjectiveSettings,
+// native/src/optimize/settings.h). NULL on refusal.
+GL_EXPORT void* gl_opt_create(const gl_opt_settings* settings, const char* start_json,
+                              const char* objective_json);
+GL_EXPORT void gl_opt_destroy(void* opt);  // NULL is allowed
+// The objective settings gl_opt_create accepts, for forms that check them before a search:
+// {"settings":[{"name","min","max","default","unit","description","integer"},...],
+//  "speeds":{"min","max","default":[...],"unit","description"},
+//  "grounds":{"default":["flat"],"terrains":["flat","slope","bumps"],"description"}}
+// (optimize/objective.h). Static.
+GL_EXPORT const char* gl_opt_settings_json(void);
+// Runs one generation; returns the best objective so far. Never fails.
+GL_EXPORT double gl_opt_step(void* opt);
+GL_EXPORT int gl_opt_generation(void* opt);   // never fails
+GL_EXPORT int gl_opt_evaluations(void* opt);  // never fails
+// The best parameters so far as a gait file (meta: method, seed, objective, its terms,
+// generations, evaluations). The optimiser's string.
+GL_EXPORT const char* gl_opt_best_json(void* opt);
 
 // ---- Benchmark (the performance page, web/src/bench) ----------------------------------------
 // The same measurement as `gaitlab bench` (native/src/sim/experiment.h), one point per call so
-// that the page can report progress and cancel between points. Both return JSON strings that
-// are parts of a bench/schema.json document; owned by the library, valid until the next call
-// of either function on the same thread.
+// that the page can report progress and cancel between points. The JSON strings are parts of a
+// bench/schema.json document.
 
-// The machine object of the document ("machine").
+// The machine object of the document ("machine"), as measured at the first call (its load
+// average then; null in a browser, which has no /proc/loadavg). Static.
 GL_EXPORT const char* gl_bench_machine(void);
 
-// Untimed warm-up before a grid (sim::warmUp): 10 characters of `legs` (2, 4, or 0 for mixed),
-// 1 s, full mode on `threads` threads.
-GL_EXPORT void gl_bench_warm_up(int legs, int threads);
+enum { GL_LEGS_MIXED = 0, GL_LEGS_BIPED = 2, GL_LEGS_QUADRUPED = 4 };
+enum { GL_MODE_SERIAL = 0, GL_MODE_CONTROLLER = 1, GL_MODE_FULL = 2 };
 
-// The largest crowd of `legs` (2, 4, or 0 for mixed) one simulation holds.
+// Untimed warm-up before a grid (sim::warmUp): 10 characters of `legs` (GL_LEGS_*), 1 s, full
+// mode on `threads` threads (clamped). GL_OK, or GL_ERR_ARGUMENT for unknown legs.
+GL_EXPORT int gl_bench_warm_up(int legs, int threads);
+
+// The largest crowd of `legs` (GL_LEGS_*) one simulation holds, or GL_ERR_ARGUMENT.
 GL_EXPORT int gl_bench_max_characters(int legs);
 
-// Runs one point and returns its element of "points". `legs` 2, 4, or 0 (mixed); `mode` 0
-// serial, 1 controller, 2 full; `threads` clamped to [1, GL_MAX_THREADS]; `frames` non-zero
-// keeps per-frame statistics. Returns "" for arguments out of range (more characters than
-// gl_bench_max_characters included).
-GL_EXPORT const char* gl_bench_point(int legs, int characters, int threads, int mode, int steps,
-                                     int runs, int shards, double spacing, uint32_t seed,
-                                     int frames);
+// One point of the experiment (sim::PointSpec; the defaults are its defaults).
+typedef struct gl_bench_settings {
+  int32_t legs;        // GL_LEGS_*; default GL_LEGS_BIPED
+  int32_t characters;  // [1, gl_bench_max_characters(legs)]; default 1
+  int32_t threads;     // clamped; default 1
+  int32_t mode;        // GL_MODE_*; default GL_MODE_SERIAL
+  int32_t steps;       // fixed steps per run, >= 1; default 800 (the thesis's)
+  int32_t runs;        // >= 1; default 20 (the thesis's)
+  int32_t shards;      // physics shards, [1, 64]; default 12
+  uint32_t seed;       // default 1
+  double spacing;      // metres between grid neighbours, >= 2.5; default 4
+  int32_t frames;      // non-zero keeps per-frame statistics; default 0
+} gl_bench_settings;
+GL_EXPORT void gl_bench_defaults(gl_bench_settings* settings);
+
+// Runs one point and returns its element of "points"; NULL on refusal (an argument out of
+// range, more characters than gl_bench_max_characters included). Valid until the next
+// gl_bench_point on the same thread.
+GL_EXPORT const char* gl_bench_point(const gl_bench_settings* settings);
 
 #ifdef __cplusplus
-}
+}  // extern "C"
+
+// The settings structs' layouts, mirrored in web/src/sim/gaitlab-wasm.ts (STRUCTS). The same in
+// the native and the WASM build: fixed-width fields only, no pointers.
+#include <cstddef>
+static_assert(offsetof(gl_throw_settings, from) == 0, "layout");
+static_assert(offsetof(gl_throw_settings, velocity) == 24, "layout");
+static_assert(offsetof(gl_throw_settings, half) == 48, "layout");
+static_assert(sizeof(gl_throw_settings) == 56, "layout");
+static_assert(offsetof(gl_drag_settings, id) == 0, "layout");
+static_assert(offsetof(gl_drag_settings, segment) == 4, "layout");
+static_assert(offsetof(gl_drag_settings, local) == 8, "layout");
+static_assert(offsetof(gl_drag_settings, target) == 32, "layout");
+static_assert(sizeof(gl_drag_settings) == 56, "layout");
+static_assert(offsetof(gl_opt_settings, kind) == 0, "layout");
+static_assert(offsetof(gl_opt_settings, method) == 4, "layout");
+static_assert(offsetof(gl_opt_settings, candidates) == 8, "layout");
+static_assert(offsetof(gl_opt_settings, threads) == 12, "layout");
+static_assert(offsetof(gl_opt_settings, seed) == 16, "layout");
+static_assert(sizeof(gl_opt_settings) == 20, "layout");
+static_assert(offsetof(gl_bench_settings, legs) == 0, "layout");
+static_assert(offsetof(gl_bench_settings, characters) == 4, "layout");
+static_assert(offsetof(gl_bench_settings, threads) == 8, "layout");
+static_assert(offsetof(gl_bench_settings, mode) == 12, "layout");
+static_assert(offsetof(gl_bench_settings, steps) == 16, "layout");
+static_assert(offsetof(gl_bench_settings, runs) == 20, "layout");
+static_assert(offsetof(gl_bench_settings, shards) == 24, "layout");
+static_assert(offsetof(gl_bench_settings, seed) == 28, "layout");
+static_assert(offsetof(gl_bench_settings, spacing) == 32, "layout");
+static_assert(offsetof(gl_bench_settings, frames) == 40, "layout");
+static_assert(sizeof(gl_bench_settings) == 48, "layout");
 #endif

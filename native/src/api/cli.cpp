@@ -1,5 +1,6 @@
 #include "api/cli.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -15,12 +16,14 @@
 #include <string>
 #include <vector>
 
+#include "api/c_api.h"
 #include "api/cli_bench.h"
 #include "api/options.h"
 #include "gait/defaults.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
+#include "optimize/settings.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::api {
@@ -214,16 +217,11 @@ int optimizeCommand(int argc, char** argv) {
   if (!o.values.count("--params")) start.params = gait::defaultParams(search.character);
 
   const std::string method = o.values.count("--method") ? o.values["--method"] : "greedy";
-  if (method == "greedy") {
-    search.method = optimize::Method::Greedy;
-  } else if (method == "cmaes") {
-    search.method = optimize::Method::CmaEs;
-  } else {
+  if (!optimize::parseMethod(method, &search.method))
     return usageError("--method: '" + method + "' is not greedy or cmaes");
-  }
   double generations = 20, candidates = 10, seed = 1, threads = 1;
   if (!o.number("--generations", 1, 1e6, 20, &generations) ||
-      !o.number("--candidates", 2, 1000, 10, &candidates) ||
+      !o.number("--candidates", optimize::kMinCandidates, optimize::kMaxCandidates, 10, &candidates) ||
       !o.number("--seed", 0, 4294967295.0, 1, &seed) ||
       !o.number("--threads", 1, 64, 1, &threads) ||
       !o.number("--seconds", 0.5, 120, search.objective.seconds, &search.objective.seconds))
@@ -232,53 +230,15 @@ int optimizeCommand(int argc, char** argv) {
   search.seed = static_cast<uint64_t>(seed);
   search.threads = static_cast<int>(threads);
 #ifdef __EMSCRIPTEN__
-  // The WASM build pre-starts a fixed pthread pool (c_api.h, GL_MAX_THREADS).
-  search.threads = std::min(search.threads, 5);
+  // The WASM build pre-starts a fixed pthread pool for GL_MAX_THREADS threads (c_api.h).
+  search.threads = std::min(search.threads, GL_MAX_THREADS);
 #endif
-  // Comma-separated lists: --speeds 0.5,1.0 and --objective wd=1,starts=3.
-  const auto split = [](const std::string& text) {
-    std::vector<std::string> parts;
-    size_t begin = 0;
-    for (;;) {
-      const size_t comma = text.find(',', begin);
-      parts.push_back(text.substr(begin, comma - begin));
-      if (comma == std::string::npos) return parts;
-      begin = comma + 1;
-    }
+  const auto given = [&](const char* name) {
+    return o.values.count(name) ? std::optional<std::string>(o.values[name]) : std::nullopt;
   };
-  const auto parseNumber = [](const std::string& text, double* out) {
-    char* end = nullptr;
-    *out = std::strtod(text.c_str(), &end);
-    return end != text.c_str() && *end == '\0' && std::isfinite(*out);
-  };
-  if (o.values.count("--speeds")) {
-    search.objective.speeds.clear();
-    for (const std::string& part : split(o.values["--speeds"])) {
-      double v;
-      if (!parseNumber(part, &v) || v < optimize::kMinGoalSpeed || v > optimize::kMaxGoalSpeed)
-        return usageError("--speeds: '" + part + "' is not a speed in [-5, 5] m/s");
-      search.objective.speeds.push_back(v);
-    }
-  }
-  if (o.values.count("--grounds")) {
-    search.objective.grounds.clear();
-    for (const std::string& part : split(o.values["--grounds"])) {
-      optimize::Ground g;
-      const std::string error = optimize::parseGround(part, &g);
-      if (!error.empty()) return usageError("--" + error);
-      search.objective.grounds.push_back(g);
-    }
-  }
-  if (o.values.count("--objective")) {
-    for (const std::string& part : split(o.values["--objective"])) {
-      const size_t eq = part.find('=');
-      double v;
-      if (eq == std::string::npos || !parseNumber(part.substr(eq + 1), &v))
-        return usageError("--objective: '" + part + "' is not NAME=NUMBER");
-      const std::string error = optimize::setSetting(search.objective, part.substr(0, eq), v);
-      if (!error.empty()) return usageError("--objective: " + error);
-    }
-  }
+  const std::string settingsError =
+      optimize::readObjectiveOptions(given("--speeds"), given("--grounds"), given("--objective"), &search.objective);
+  if (!settingsError.empty()) return usageError(settingsError);
 
   std::string command = "gaitlab";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];

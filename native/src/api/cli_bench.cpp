@@ -1,5 +1,6 @@
 #include "api/cli_bench.h"
 
+#include "api/c_api.h"
 #include "api/options.h"
 
 #include <algorithm>
@@ -298,9 +299,9 @@ int runBenchCli(int argc, char** argv) {
       return benchError("--characters: " + std::to_string(largest) + " " + (l == sim::kMixed ? std::string("mixed characters") : l == 2 ? "bipeds" : "quadrupeds") +
                         " is more than a simulation holds (" + std::to_string(most) + ")");
   }
-  // The WASM build pre-starts 4 pthreads (c_api.h, GL_MAX_THREADS); natively the same limit
-  // keeps the two comparable.
-  if (!parseList(threadsText, 1, 5, &threads, &error)) return benchError("--threads: " + error);
+  // The WASM build pre-starts a pthread pool for GL_MAX_THREADS threads (c_api.h); natively the
+  // same limit keeps the two comparable.
+  if (!parseList(threadsText, 1, GL_MAX_THREADS, &threads, &error)) return benchError("--threads: " + error);
 
   // The grid. Serial mode ignores the thread count, so it is measured once, with 1 thread.
   std::vector<sim::PointSpec> grid;

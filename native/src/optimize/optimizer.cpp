@@ -11,6 +11,16 @@ namespace gaitlab::optimize {
 
 const char* methodName(Method m) { return m == Method::Greedy ? "greedy" : "cmaes"; }
 
+bool parseMethod(const std::string& name, Method* out) {
+  for (Method m : {Method::Greedy, Method::CmaEs}) {
+    if (name == methodName(m)) {
+      *out = m;
+      return true;
+    }
+  }
+  return false;
+}
+
 std::vector<double> perturb(const std::vector<double>& x, const std::vector<double>& lo,
                             const std::vector<double>& hi, double probability, double scale, Random& rng) {
   std::vector<double> y = x;

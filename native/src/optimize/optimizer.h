@@ -29,7 +29,11 @@
 namespace gaitlab::optimize {
 
 enum class Method { Greedy, CmaEs };
-const char* methodName(Method m);
+const char* methodName(Method m);             // "greedy", "cmaes"
+bool parseMethod(const std::string& name, Method* out);
+
+// Candidates per generation a search accepts (`gaitlab optimize --candidates`, gl_opt_create).
+constexpr int kMinCandidates = 2, kMaxCandidates = 1000;
 
 struct SearchOptions {
   gait::Character character = gait::Character::Biped;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "api/c_api.h"
+#include "api/handles.h"
 #include "gait/defaults.h"
 #include "gait/params_io.h"
 #include "sim/simulation.h"
@@ -53,7 +54,7 @@ TEST(ParamsCApi, SetsOneCharacterAndReadsItBack) {
   EXPECT_EQ(gl_sim_get_params(sim, box), nullptr);
 
   // What get_params returns is a gait file that loads back to the controller's exact values.
-  auto* s = static_cast<sim::Simulation*>(sim);
+  sim::Simulation* s = &api::simulationOf(sim);
   gait::GaitFile file;
   ASSERT_FALSE(gait::parseGaitFile(gl_sim_get_params(sim, biped), gait::Character::Biped, &file));
   EXPECT_EQ(std::memcmp(&file.params, &s->controller(0).params(), sizeof(gait::GaitParams)), 0);
@@ -92,7 +93,7 @@ TEST(ParamsCApi, MinusOneSetsEveryCharacterOfTheKind) {
   json q = parse(gl_preset_json(GL_KIND_QUADRUPED));
   q["params"]["period"] = 0.85;
   ASSERT_EQ(gl_sim_set_params(sim, -1, GL_KIND_QUADRUPED, q.dump().c_str()), GL_OK) << gl_last_error();
-  auto* s = static_cast<sim::Simulation*>(sim);
+  sim::Simulation* s = &api::simulationOf(sim);
   int quadrupeds = 0;
   for (int i = 0; i < s->characterCount(); ++i) {
     const json p = parse(gl_sim_get_params(sim, s->characterId(i)));

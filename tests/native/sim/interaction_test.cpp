@@ -28,6 +28,17 @@ const gaitlab::BodyInfo* bodyInfo(void* sim) {
   return reinterpret_cast<const gaitlab::BodyInfo*>(reinterpret_cast<const unsigned char*>(h) + h->info);
 }
 
+// gl_sim_throw_box and gl_sim_drag with their settings structs filled from positional values.
+int throwBox(void* sim, double x, double y, double z, double vx, double vy, double vz, double half) {
+  const gl_throw_settings t{{x, y, z}, {vx, vy, vz}, half};
+  return gl_sim_throw_box(sim, &t);
+}
+
+int drag(void* sim, int id, int segment, double lx, double ly, double lz, double tx, double ty, double tz) {
+  const gl_drag_settings d{id, segment, {lx, ly, lz}, {tx, ty, tz}};
+  return gl_sim_drag(sim, &d);
+}
+
 }  // namespace
 
 TEST(Interaction, CharacterInfoDescribesEachCharacter) {
@@ -57,7 +68,7 @@ TEST(Interaction, GoalsReachOneOrAllCharacters) {
   gl_sim_spawn(sim, GL_KIND_QUADRUPED, 5, 0, 0);
   EXPECT_EQ(gl_sim_set_goal(sim, -1, 0.7, 0.1), 0);
   EXPECT_EQ(gl_sim_set_goal(sim, a, 1.2, -0.2), 0);
-  EXPECT_EQ(gl_sim_set_goal(sim, 999, 1, 0), -1);
+  EXPECT_EQ(gl_sim_set_goal(sim, 999, 1, 0), GL_ERR_NO_CHARACTER);
   const auto info = infos(sim);
   EXPECT_EQ(info[0][GL_INFO_GOAL_SPEED], 1.2);
   EXPECT_EQ(info[0][GL_INFO_GOAL_TURN], -0.2);
@@ -72,7 +83,7 @@ TEST(Interaction, ThrownBoxHitsACharacter) {
     gl_sim_spawn(sim, GL_KIND_BIPED, 0, 0, 0);
     gl_sim_step(sim, 1);
     const double y = infos(sim)[0][GL_INFO_Y];
-    if (hit) EXPECT_GE(gl_sim_throw_box(sim, -3, y + 0.3, 0, 15, 0, 0, 0.12), 0);
+    if (hit) EXPECT_GE(throwBox(sim, -3, y + 0.3, 0, 15, 0, 0, 0.12), 0);
     gl_sim_step(sim, 30);  // 0.25 s: the box crosses 3 m in 0.2 s
     const Info after = infos(sim)[0];
     gl_sim_destroy(sim);
@@ -86,7 +97,7 @@ TEST(Interaction, ThrownBoxesAreCappedAndLeaveTheRenderBuffer) {
   void* sim = gl_sim_create(1, 1);
   gl_sim_spawn(sim, GL_KIND_BIPED, 0, 0, 0);
   const int before = gl_sim_body_count(sim);
-  for (int i = 0; i < 40; ++i) gl_sim_throw_box(sim, i, 1, 5, 0, 0, 0, 0.1);
+  for (int i = 0; i < 40; ++i) throwBox(sim, i, 1, 5, 0, 0, 0, 0.1);
   EXPECT_EQ(gl_sim_body_count(sim), before + 32);
   gl_sim_step(sim, 1);
   // The character's bodies are still first and still its own.
@@ -101,9 +112,9 @@ TEST(Interaction, DragPullsTheBodyTowardsTheTargetUntilReleased) {
   gl_sim_step(sim, 1);
   const Info start = infos(sim)[0];
   // Segment 0 is the root leg frame (the pelvis): pull it 1.5 m sideways.
-  ASSERT_EQ(gl_sim_drag(sim, id, 0, 0, 0, 0, start[GL_INFO_X] + 1.5, start[GL_INFO_Y], start[GL_INFO_Z]), 0);
-  EXPECT_EQ(gl_sim_drag(sim, id, 999, 0, 0, 0, 0, 0, 0), -1);
-  EXPECT_EQ(gl_sim_drag(sim, 999, 0, 0, 0, 0, 0, 0, 0), -1);
+  ASSERT_EQ(drag(sim, id, 0, 0, 0, 0, start[GL_INFO_X] + 1.5, start[GL_INFO_Y], start[GL_INFO_Z]), 0);
+  EXPECT_EQ(drag(sim, id, 999, 0, 0, 0, 0, 0, 0), GL_ERR_ARGUMENT);
+  EXPECT_EQ(drag(sim, 999, 0, 0, 0, 0, 0, 0, 0), GL_ERR_NO_CHARACTER);
   gl_sim_step(sim, 120);
   const Info pulled = infos(sim)[0];
   EXPECT_GT(pulled[GL_INFO_X] - start[GL_INFO_X], 0.7);
@@ -116,7 +127,7 @@ TEST(Interaction, FallenCharactersAreDetectedAndResetWhereTheyLie) {
   void* sim = gl_sim_create(1, 1);
   const int id = gl_sim_spawn(sim, GL_KIND_BIPED, 2, 3, 0);
   // Knock it over: a hard pull of the pelvis sideways and down.
-  gl_sim_drag(sim, id, 0, 0, 0, 0, 4, -1, 3);
+  drag(sim, id, 0, 0, 0, 0, 4, -1, 3);
   gl_sim_step(sim, 120);
   gl_sim_end_drag(sim);
   gl_sim_step(sim, 60);
@@ -126,7 +137,7 @@ TEST(Interaction, FallenCharactersAreDetectedAndResetWhereTheyLie) {
 
   const int bodies = gl_sim_body_count(sim);
   ASSERT_EQ(gl_sim_reset_character(sim, id), 0);
-  EXPECT_EQ(gl_sim_reset_character(sim, 999), -1);
+  EXPECT_EQ(gl_sim_reset_character(sim, 999), GL_ERR_NO_CHARACTER);
   gl_sim_step(sim, 1);
   const Info up = infos(sim)[0];
   EXPECT_EQ(up[GL_INFO_ID], id);
@@ -138,7 +149,7 @@ TEST(Interaction, FallenCharactersAreDetectedAndResetWhereTheyLie) {
 
   // Automatic reset: knocked over again, it is back up within the set time.
   gl_sim_set_auto_reset(sim, 0.5);
-  gl_sim_drag(sim, id, 0, 0, 0, 0, up[GL_INFO_X] + 2, -1, up[GL_INFO_Z]);
+  drag(sim, id, 0, 0, 0, 0, up[GL_INFO_X] + 2, -1, up[GL_INFO_Z]);
   bool wasDown = false, backUp = false;
   for (int i = 0; i < 400 && !backUp; ++i) {
     gl_sim_step(sim, 1);
@@ -165,7 +176,7 @@ TEST(Interaction, RemovingACharacterPacksTheRenderBuffer) {
   int bodiesOfA = 0;
   for (int i = 0; i < all; ++i) bodiesOfA += bodyInfo(sim)[i].owner == a;
   ASSERT_EQ(gl_sim_remove_character(sim, a), 0);
-  EXPECT_EQ(gl_sim_remove_character(sim, a), -1);
+  EXPECT_EQ(gl_sim_remove_character(sim, a), GL_ERR_NO_CHARACTER);
   EXPECT_EQ(gl_sim_character_count(sim), 1);
   EXPECT_EQ(gl_sim_body_count(sim), all - bodiesOfA);
   EXPECT_EQ(bodyInfo(sim)[0].owner, -1);  // the box moved up to the front

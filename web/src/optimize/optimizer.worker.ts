@@ -18,19 +18,9 @@
 // worker when the search ends or is stopped. Terminating is also what makes Stop immediate
 // (a generation in progress cannot be interrupted from inside); the best so far is what the
 // last finished generation reported.
-import { Kind, loadGaitlab, type GaitlabModule } from '../sim/gaitlab-wasm';
+import { Kind, loadGaitlab, METHOD, Search } from '../sim/gaitlab-wasm';
 import { errorMessage } from '../sim/protocol';
 import type { OptimizerCommand, OptimizerEvent } from './protocol';
-
-/** The optimisation part of the C API (c_api.h, "Optimisation, one generation at a time"). */
-interface OptimizerModule extends GaitlabModule {
-  _gl_opt_create(kind: number, method: number, candidates: number, seed: number, threads: number, startJson: number, settingsJson: number): number;
-  _gl_opt_step(opt: number): number;
-  _gl_opt_generation(opt: number): number;
-  _gl_opt_evaluations(opt: number): number;
-  _gl_opt_best_json(opt: number): number;
-  _gl_opt_destroy(opt: number): void;
-}
 
 interface WorkerScope {
   postMessage(message: OptimizerEvent): void;
@@ -39,49 +29,41 @@ interface WorkerScope {
 const scope = self as unknown as WorkerScope;
 const post = (event: OptimizerEvent) => scope.postMessage(event);
 
-/** A copy of `text` in module memory (free it). */
-function cString(m: GaitlabModule, text: string): number {
-  const bytes = m.lengthBytesUTF8(text) + 1;
-  const pointer = m._malloc(bytes);
-  m.stringToUTF8(text, pointer, bytes);
-  return pointer;
-}
-
 async function run(command: OptimizerCommand): Promise<void> {
   if (!crossOriginIsolated) throw new Error('the page is not cross-origin isolated: no WASM threads');
   const t0 = performance.now();
-  const m = (await loadGaitlab(command.wasmUrl, {
+  const m = await loadGaitlab(command.wasmUrl, {
     printErr: (text) => console.warn(`[gaitlab optimizer] ${text}`),
     onAbort: (what) => post({ type: 'error', message: `the WASM module aborted: ${errorMessage(what)}` }),
-  })) as OptimizerModule;
-  if (!m._gl_opt_create) throw new Error('this build of the module has no optimiser (gl_opt_create)');
+  });
   const o = command.options;
-  const settings = cString(m, JSON.stringify({ ...o.settings, speeds: o.speeds }));
-  const start = command.startJson === null ? 0 : cString(m, command.startJson);
-  const opt = m._gl_opt_create(Kind[o.character], o.method === 'cmaes' ? 1 : 0, o.candidates, o.seed >>> 0, o.threads, start, settings);
-  m._free(settings);
-  if (start) m._free(start);
-  if (!opt) throw new Error(`the search was refused: ${m._gl_last_error ? m.UTF8ToString(m._gl_last_error()) : 'unknown error'}`);
+  let search: Search;
+  try {
+    search = new Search(m, { kind: Kind[o.character], method: METHOD[o.method], candidates: o.candidates, seed: o.seed, threads: o.threads },
+      command.startJson, { ...o.settings, speeds: o.speeds });
+  } catch (error) {
+    throw new Error(`the search was refused: ${error instanceof Error ? error.message : String(error)}`);
+  }
   post({ type: 'started', loadSeconds: (performance.now() - t0) / 1000 });
 
   let best = Infinity;
   for (let g = 0; g < o.generations; g++) {
     const g0 = performance.now();
-    const objective = m._gl_opt_step(opt);
+    const objective = search.step();
     const seconds = (performance.now() - g0) / 1000;
     const improved = objective < best;
     best = Math.min(best, objective);
     post({
       type: 'generation',
-      generation: m._gl_opt_generation(opt),
-      evaluations: m._gl_opt_evaluations(opt),
+      generation: search.generation,
+      evaluations: search.evaluations,
       best: objective,
       seconds,
       improved,
-      gait: improved ? m.UTF8ToString(m._gl_opt_best_json(opt)) : null,
+      gait: improved ? search.bestJson() : null,
     });
   }
-  m._gl_opt_destroy(opt);
+  search.destroy();
   post({ type: 'done' });
 }
 

@@ -1,9 +1,10 @@
-// Messages between the main thread and the sim worker (DESIGN.md, data flow step 1).
+// Messages between the main thread and the sim worker.
 //
 // Only control traffic goes through postMessage: commands one way, lifecycle and statistics the
 // other. Render transforms never do: the worker sends the WASM memory (a SharedArrayBuffer) and
 // the render-header pointer once per scene, and the main thread reads every frame straight out of
-// that memory (data flow step 3, see render-buffer.ts).
+// that memory (see render-buffer.ts).
+import { MAX_THREADS } from './gaitlab-wasm';
 import { isTerrainKind, type TerrainGrid, type TerrainKind } from './terrain-grid';
 
 /** How the worker should set up the simulation. */
@@ -27,7 +28,7 @@ export type CharacterType = 'biped' | 'quadruped';
 
 /**
  * Commands that change the running scene. The worker queues them and applies them at the start
- * of the next fixed step, logging each with that step's index (DESIGN.md, data flow step 1), so
+ * of the next fixed step, logging each with that step's index, so
  * a run can be replayed from (seed, scene, command log). While paused they apply at once, which
  * is the same thing: no step happens in between.
  */
@@ -165,12 +166,11 @@ export type SimEvent =
   | { type: 'error'; message: string };
 
 /**
- * Most threads a simulation may use in the browser. The module starts a fixed pool of 4 pthread
- * workers (PTHREAD_POOL_SIZE, native/CMakeLists.txt) and a simulation on T threads takes T − 1 of
- * them; a pthread beyond the pool would need a new Worker, which cannot start while the sim
- * worker blocks in a step — the simulation would hang.
+ * Most threads a simulation may use in the browser: the module's limit (GL_MAX_THREADS,
+ * native/src/api/c_api.h, which says why), as the binding states it for option parsing before
+ * the module loads.
  */
-export const MAX_THREADS = 4;
+export { MAX_THREADS } from './gaitlab-wasm';
 
 /** The thread count the demo uses: one per core, at most MAX_THREADS (and at least 1). */
 export function defaultThreads(hardwareConcurrency: number | undefined): number {

@@ -1,11 +1,28 @@
-// The sim worker: owns the WASM module and runs the fixed-step loop in real time (DESIGN.md, data
-// flow step 2). The simulation never runs on the browser's main thread: a step blocks (the
-// thread pool waits on futexes, which the main thread may not do) and takes milliseconds.
+// The sim worker: owns the WASM module and runs the fixed-step loop in real time. The simulation
+// never runs on the browser's main thread: a step blocks (the thread pool waits on futexes, which
+// the main thread may not do) and takes milliseconds.
+//
+// The file is the worker's message handling (handle) around one object, the WorkerScene: the
+// module, the simulation and everything the scene keeps between steps.
 //
 // This worker is also the Emscripten "main thread" of the module, so the module's pthread pool
 // consists of workers nested in this one.
 import { FixedStepClock } from './fixed-step-clock';
-import { ALTERNATING, gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
+import {
+  ALTERNATING,
+  cruiseSpeed,
+  ERR,
+  GaitlabError,
+  gaitlabVersion,
+  INFO,
+  Kind,
+  loadGaitlab,
+  optimizerSettingsJson,
+  presetJson,
+  schemaJson,
+  Simulation,
+  type GaitlabModule,
+} from './gaitlab-wasm';
 import type { TerrainKind } from './terrain-grid';
 import { CHARACTER_TYPES } from '../share/gait-file';
 import {
@@ -40,421 +57,539 @@ interface WorkerScope {
 const scope = self as unknown as WorkerScope;
 const post = (event: SimEvent) => scope.postMessage(event);
 
-let module: GaitlabModule | null = null;
-let options: SimOptions | null = null;
-let sim: Simulation | null = null;
-/** Counts the simulations made; the main thread names render buffers by it. */
-let generation = 0;
-/** A reset waits for the main thread to release the current render buffer. */
-let resetPending = false;
-let paused = false;
-let timer: ReturnType<typeof setTimeout> | undefined;
-let statsTimer: ReturnType<typeof setInterval> | undefined;
-let failed = false;
-
-const clock = new FixedStepClock({ step: STEP, maxStepsPerTick: MAX_STEPS_PER_TICK });
-
-/**
- * Slow motion: the clock is fed a virtual time that runs at `timeScale` of the wall clock, so it
- * asks for proportionally fewer steps; each step is still the fixed 1/120 s (the physics and the
- * controller see no difference).
- */
-let timeScale: TimeScale = 1;
-let virtualTime = 0;
-let lastWall = performance.now() / 1000;
-const now = () => {
-  const wall = performance.now() / 1000;
-  virtualTime += (wall - lastWall) * timeScale;
-  lastWall = wall;
-  return virtualTime;
-};
-
-/** Scene commands waiting for the start of the next fixed step. */
-let pending: SceneCommand[] = [];
-/**
- * Every scene command applied, with the index of the step it preceded: with the seed and the
- * scene options this replays the run. Bounded, so a long session does not grow without end.
- */
-const commandLog: { step: number; command: SceneCommand }[] = [];
+/** The command log is bounded, so a long session does not grow without end. */
 const COMMAND_LOG_LIMIT = 10_000;
-let commandsApplied = 0;
+
+type Goal = { speed: number; turn: number };
+const sameGoal = (a: Goal, b: Goal) => a.speed === b.speed && a.turn === b.turn;
 
 /**
- * The goal each type starts with: its cruise speed (gl_cruise_speed, the speed its preset is
- * benchmarked at; a 0.49 m dog walks slower than a 1.8 m human), set once the module is loaded.
- * A goal given to all characters replaces both.
+ * The running scene: the loaded module and its one simulation, the real-time loop's clock and
+ * timers, the queued and applied scene commands, and what a new scene carries over from the last
+ * (goals, auto-reset, gaits of a whole type, the ground).
  */
-const lastGoals: Record<CharacterType, { speed: number; turn: number }> = {
-  biped: { speed: 0, turn: 0 },
-  quadruped: { speed: 0, turn: 0 },
-};
-/**
- * The gait last given to every character of a type (setParams with id 'all'): characters added
- * later, and the characters of a new scene, walk with it too.
- */
-const typeGaits: Partial<Record<CharacterType, string>> = {};
+class WorkerScene {
+  private sim: Simulation | null = null;
+  /** Counts the simulations made; the main thread names render buffers by it. */
+  private generation = 0;
+  /** A reset waits for the main thread to release the current render buffer. */
+  private resetPending = false;
+  private paused: boolean;
+  private timer: ReturnType<typeof setTimeout> | undefined;
+  private statsTimer: ReturnType<typeof setInterval> | undefined;
+  private failed = false;
 
-/**
- * The optimize panel's learner (scene command 'learner'): its id, the command that made it
- * (replayed to start it over), and the simulated time it started. It stands at the scene
- * layout's place apart, left of the crowd's grid (gl_sim_add_apart), so it can be watched alone.
- */
-let learner: { id: number; command: Extract<SceneCommand, { type: 'learner' }>; since: number } | null = null;
-/** A new learner (so a new id) is reported at once, not at the next 4 Hz report. */
-let learnerChanged = false;
+  private readonly clock = new FixedStepClock({ step: STEP, maxStepsPerTick: MAX_STEPS_PER_TICK });
+  /**
+   * Slow motion: the clock is fed a virtual time that runs at `timeScale` of the wall clock, so
+   * it asks for proportionally fewer steps; each step is still the fixed 1/120 s (the physics and
+   * the controller see no difference).
+   */
+  private timeScale: TimeScale = 1;
+  private virtualTime = 0;
+  private lastWall = performance.now() / 1000;
 
-// Step timing accumulated between statistics reports.
-let stepWallMs = 0;
-let stepsTimed = 0;
-let droppedSteps = 0;
+  /** Scene commands waiting for the start of the next fixed step. */
+  private pending: SceneCommand[] = [];
+  /**
+   * Every scene command applied, with the index of the step it preceded: with the seed and the
+   * scene options this replays the run.
+   */
+  private readonly commandLog: { step: number; command: SceneCommand }[] = [];
+  private commandsApplied = 0;
+
+  /**
+   * The goal each type starts with: its cruise speed (gl_cruise_speed, the speed its preset is
+   * benchmarked at; a 0.49 m dog walks slower than a 1.8 m human). A goal given to all
+   * characters replaces both.
+   */
+  private readonly lastGoals: Record<CharacterType, Goal>;
+  /**
+   * The gait last given to every character of a type (setParams with id 'all'): characters added
+   * later, and the characters of a new scene, walk with it too.
+   */
+  private readonly typeGaits: Partial<Record<CharacterType, string>> = {};
+  private autoResetSeconds = 0;
+  /** The ground: kept across new scenes, like the goal and the auto-reset. */
+  private terrain: TerrainKind;
+
+  /**
+   * The optimize panel's learner (scene command 'learner'): its id, the command that made it
+   * (replayed to start it over), and the simulated time it started. It stands apart, left of
+   * the crowd's grid level with its middle row, so it can be watched alone.
+   */
+  private learner: { id: number; command: Extract<SceneCommand, { type: 'learner' }>; since: number } | null = null;
+  /** A new learner (so a new id) is reported at once, not at the next 4 Hz report. */
+  private learnerChanged = false;
+
+  // Step timing accumulated between statistics reports.
+  private stepWallMs = 0;
+  private stepsTimed = 0;
+  private droppedSteps = 0;
+
+  constructor(private readonly module: GaitlabModule, private readonly options: SimOptions) {
+    this.paused = options.paused === true;
+    this.terrain = options.terrain ?? 'flat';
+    this.lastGoals = {
+      biped: { speed: cruiseSpeed(module, Kind.biped), turn: 0 },
+      quadruped: { speed: cruiseSpeed(module, Kind.quadruped), turn: 0 },
+    };
+  }
+
+  /** Builds the first scene and starts the loop and the statistics heartbeat. */
+  start(): void {
+    this.newScene();
+    this.schedule();
+    this.statsTimer = setInterval(() => this.reportStats(), STATS_INTERVAL_MS);
+  }
+
+  get hasFailed(): boolean {
+    return this.failed;
+  }
+
+  fail(error: unknown): void {
+    // The first report is the informative one (an abort is also rethrown as a RuntimeError).
+    if (this.failed) return;
+    this.failed = true;
+    clearTimeout(this.timer);
+    clearInterval(this.statsTimer);
+    console.error(error);
+    post({ type: 'error', message: errorMessage(error) });
+  }
+
+  private now(): number {
+    const wall = performance.now() / 1000;
+    this.virtualTime += (wall - this.lastWall) * this.timeScale;
+    this.lastWall = wall;
+    return this.virtualTime;
+  }
+
+  /** Builds a fresh demo scene and hands its render buffer to the main thread. */
+  private newScene(): void {
+    const { module, options } = this;
+    // The previous simulation is gone by now (see 'released'): its pthreads are back in the pool.
+    const sim = (this.sim = new Simulation(module, options.threads, options.seed));
+    // The ground first, so that the characters are spawned standing on it.
+    if (this.terrain !== 'flat') sim.setTerrain(this.terrain);
+    this.pending = [];
+    this.commandLog.length = 0;
+    this.commandsApplied = 0;
+    this.learner = null;
+    // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid
+    // (the first group added sizes the layout's grid).
+    this.addCharacters(options.characters, ALTERNATING);
+    sim.setAutoReset(this.autoResetSeconds);
+    // What the new scene keeps from the session (goal, auto-reset, gaits of a whole type) opens
+    // its command log, so that the log alone with the seed still replays the run.
+    const { lastGoals, terrain } = this;
+    const carried: SceneCommand[] = [
+      ...(terrain !== 'flat' ? [{ type: 'setTerrain' as const, terrain }] : []),
+      // One goal for all, once one was given to all; until then each type's start goal, which
+      // addCharacters gives every character it spawns.
+      ...(sameGoal(lastGoals.biped, lastGoals.quadruped) ? [{ type: 'setGoal' as const, id: 'all' as const, ...lastGoals.biped }] : []),
+      { type: 'autoReset', seconds: this.autoResetSeconds },
+      ...Object.entries(this.typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
+    ];
+    for (const command of carried) this.commandLog.push({ step: 0, command });
+    // Publish an initial frame (zero steps) so the first thing drawn is the scene as spawned.
+    sim.step(0);
+    this.generation += 1;
+    post({
+      type: 'ready',
+      generation: this.generation,
+      memory: module.HEAPU8.buffer as SharedArrayBuffer,
+      header: sim.renderHeader,
+      threads: sim.threads,
+      version: gaitlabVersion(module),
+      schema: schemaJson(module),
+      optimizerSchema: optimizerSettingsJson(module),
+    });
+    this.postTerrain();
+    if (!this.paused) this.clock.start(this.now());
+  }
+
+  /** Sends the ground's grid and samples to the main thread (a copy, transferred). */
+  private postTerrain(): void {
+    if (!this.sim) return;
+    const grid = this.sim.terrainGrid();
+    scope.postMessage({ type: 'terrain', generation: this.generation, grid }, grid.heights ? [grid.heights.buffer] : []);
+  }
+
+  /**
+   * Adds `count` characters in the next free places of the scene's layout (gl_sim_add_characters,
+   * which places them and stops when the render buffer is full), then gives each its type's goal
+   * and gait of this session.
+   */
+  private addCharacters(count: number, kindCode: number): void {
+    const { sim } = this;
+    if (!sim) return;
+    const added = sim.addCharacters(kindCode, count);
+    const info = sim.characterInfo(); // the added characters are the last ones
+    for (let o = info.length - added * INFO.fields; o < info.length; o += INFO.fields) {
+      const id = info[o + INFO.id];
+      const kind: CharacterType = info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped';
+      sim.setGoal(id, this.lastGoals[kind].speed, this.lastGoals[kind].turn);
+      const gait = this.typeGaits[kind];
+      if (gait) {
+        try {
+          sim.setParams(id, Kind[kind], gait);
+        } catch {
+          delete this.typeGaits[kind]; // refused: back to the preset
+        }
+      }
+    }
+  }
+
+  /**
+   * Applies one scene command to the simulation (the start of a fixed step). A command the
+   * module refuses is reported to the page; one naming a character that is gone (removed or
+   * replaced since the page named it) has nothing to act on and is dropped, as the page expects.
+   */
+  private apply(command: SceneCommand): void {
+    try {
+      this.applyToSimulation(command);
+    } catch (error) {
+      if (!(error instanceof GaitlabError)) throw error;
+      if (error.code === ERR.noCharacter) return;
+      post({ type: 'commandError', message: `the command '${command.type}' was refused: ${error.detail}` });
+    }
+  }
+
+  private applyToSimulation(command: SceneCommand): void {
+    const sim = this.sim;
+    if (!sim) return;
+    switch (command.type) {
+      case 'setGoal':
+        if (command.id === 'all') {
+          for (const kind of CHARACTER_TYPES) this.lastGoals[kind] = { speed: command.speed, turn: command.turn };
+        }
+        sim.setGoal(command.id === 'all' ? -1 : command.id, command.speed, command.turn);
+        return;
+      case 'throwBox':
+        sim.throwBox(command.from, command.velocity, command.half);
+        return;
+      case 'drag':
+        sim.drag(command.id, command.segment, command.local, command.target);
+        return;
+      case 'endDrag':
+        sim.endDrag();
+        return;
+      case 'resetCharacter':
+        sim.resetCharacter(command.id);
+        return;
+      case 'resetFallen': {
+        const info = sim.characterInfo();
+        for (let o = 0; o < info.length; o += INFO.fields) {
+          if (info[o + INFO.fallen]) sim.resetCharacter(info[o + INFO.id]);
+        }
+        return;
+      }
+      case 'remove':
+        if (this.learner?.id === command.id) this.learner = null;
+        sim.removeCharacter(command.id);
+        return;
+      case 'add':
+        this.addCharacters(Math.max(0, Math.min(64, Math.floor(command.count))), Kind[command.kind]);
+        return;
+      case 'autoReset':
+        this.autoResetSeconds = Math.max(0, command.seconds);
+        sim.setAutoReset(this.autoResetSeconds);
+        return;
+      case 'setParams':
+        try {
+          sim.setParams(command.id === 'all' ? -1 : command.id, Kind[command.character], command.json);
+        } catch (error) {
+          if (!(error instanceof GaitlabError)) throw error;
+          post({ type: 'commandError', message: `the gait was not applied: ${error.detail}` });
+          return;
+        }
+        if (command.id === 'all') this.typeGaits[command.character] = command.json;
+        return;
+      case 'learner':
+        this.startLearner(sim, command);
+        return;
+      case 'removeLearner':
+        if (this.learner) sim.removeCharacter(this.learner.id);
+        this.learner = null;
+        return;
+      case 'setTerrain':
+        sim.setTerrain(command.terrain);
+        this.terrain = command.terrain;
+        this.postTerrain();
+        return;
+      default: {
+        const unknown: never = command;
+        throw new Error(`unknown scene command ${JSON.stringify(unknown)}`);
+      }
+    }
+  }
+
+  /** The learner: spawned apart from the crowd with the command's gait and goal. */
+  private startLearner(sim: Simulation, command: Extract<SceneCommand, { type: 'learner' }>): void {
+    if (this.learner) sim.removeCharacter(this.learner.id);
+    this.learner = null;
+    let id: number;
+    try {
+      // The scene layout's place apart, left of the crowd's grid, where it can be watched alone.
+      id = sim.addApart(Kind[command.character]);
+    } catch (error) {
+      if (!(error instanceof GaitlabError && error.code === ERR.full)) throw error;
+      post({ type: 'commandError', message: 'the learner was not added: the scene is full' });
+      return;
+    }
+    try {
+      sim.setParams(id, Kind[command.character], command.json);
+    } catch (error) {
+      if (!(error instanceof GaitlabError)) throw error;
+      sim.removeCharacter(id);
+      post({ type: 'commandError', message: `the learner was not added: ${error.detail}` });
+      return;
+    }
+    sim.setGoal(id, command.speed, command.turn);
+    this.learner = { id, command, since: sim.time };
+    this.learnerChanged = true;
+  }
+
+  /** Applies the queued commands, logged with the index of the step they precede. */
+  private applyPending(): void {
+    if (!this.sim || this.pending.length === 0) return;
+    const step = this.sim.stepIndex;
+    for (const command of this.pending) {
+      this.apply(command);
+      if (this.commandLog.length >= COMMAND_LOG_LIMIT) this.commandLog.shift();
+      this.commandLog.push({ step, command });
+      this.commandsApplied++;
+    }
+    this.pending = [];
+  }
+
+  private characterStatus(): CharacterStatus[] {
+    if (!this.sim) return [];
+    const info = this.sim.characterInfo();
+    const out: CharacterStatus[] = [];
+    for (let o = 0; o < info.length; o += INFO.fields) {
+      out.push({
+        id: info[o + INFO.id],
+        type: info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped',
+        position: [info[o + INFO.x], info[o + INFO.y], info[o + INFO.z]],
+        heading: info[o + INFO.heading],
+        speed: info[o + INFO.speed],
+        fallen: info[o + INFO.fallen] !== 0,
+        fallenSeconds: info[o + INFO.fallenSeconds],
+        goal: { speed: info[o + INFO.goalSpeed], turn: info[o + INFO.goalTurn] },
+        phase: info[o + INFO.phase],
+      });
+    }
+    return out;
+  }
+
+  reportStats(): void {
+    const sim = this.sim;
+    if (!sim || this.failed) return;
+    post({
+      type: 'stats',
+      generation: this.generation,
+      simTime: sim.time,
+      stepIndex: sim.stepIndex,
+      bodies: sim.bodyCount,
+      threads: sim.threads,
+      paused: this.paused,
+      stepMs: this.stepsTimed > 0 ? this.stepWallMs / this.stepsTimed : 0,
+      droppedSteps: this.droppedSteps,
+      timeScale: this.timeScale,
+      characters: this.characterStatus(),
+      commandsApplied: this.commandsApplied,
+      learner: this.learner?.id ?? null,
+      terrain: this.terrain,
+    });
+    this.stepWallMs = 0;
+    this.stepsTimed = 0;
+    this.droppedSteps = 0;
+  }
+
+  /** One turn of the real-time loop: take the steps that are due, then sleep until the next. */
+  private tick(): void {
+    this.timer = undefined;
+    const sim = this.sim;
+    if (this.failed || !sim) return;
+    try {
+      const { steps, dropped, wait } = this.clock.tick(this.now());
+      this.droppedSteps += dropped;
+      if (steps > 0) {
+        const t0 = performance.now();
+        // The learner starts over every loopSeconds: as a logged command, so the log replays it.
+        const learner = this.learner;
+        if (learner && learner.command.loopSeconds > 0 && sim.time - learner.since >= learner.command.loopSeconds) {
+          this.pending.push(learner.command);
+        }
+        this.applyPending();
+        // One call for all due steps: gl_sim_step publishes a frame once, after the last.
+        sim.step(steps);
+        this.stepWallMs += performance.now() - t0;
+        this.stepsTimed += steps;
+        if (this.learnerChanged) {
+          // The main thread marks and follows the learner by id: tell it the new one now.
+          this.learnerChanged = false;
+          this.reportStats();
+        }
+      }
+      // Returning to the event loop between ticks is what lets commands in; a timeout of 0 when
+      // behind still does.
+      if (!this.paused) this.timer = setTimeout(() => this.tick(), wait * 1000);
+    } catch (error) {
+      this.fail(error);
+    }
+  }
+
+  private schedule(): void {
+    if (this.timer === undefined && !this.paused && !this.failed) this.timer = setTimeout(() => this.tick(), 0);
+  }
+
+  pause(): void {
+    this.paused = true;
+    this.clock.stop();
+    clearTimeout(this.timer);
+    this.timer = undefined;
+    this.reportStats();
+  }
+
+  resume(): void {
+    if (!this.paused) return;
+    this.paused = false;
+    this.clock.start(this.now());
+    this.schedule();
+    this.reportStats();
+  }
+
+  /** Asks the main thread to release the render buffer; 'released' then builds the new scene. */
+  requestReset(): void {
+    if (!this.sim || this.resetPending) return;
+    // Freeing the simulation now could let the main thread read released memory; and making
+    // the new one first would need more pthreads than the module's fixed pool holds.
+    this.resetPending = true;
+    post({ type: 'release', generation: this.generation });
+  }
+
+  released(generation: number): void {
+    if (!this.resetPending || generation !== this.generation || !this.sim) return;
+    this.resetPending = false;
+    this.sim.destroy();
+    this.sim = null;
+    this.newScene();
+    this.schedule();
+  }
+
+  /** `count` fixed steps while paused (while running, steps come from the clock). */
+  stepPaused(count: number): void {
+    if (!this.sim || !this.paused) return;
+    this.applyPending();
+    this.sim.step(Math.max(1, Math.min(1200, Math.floor(count))));
+    this.reportStats();
+  }
+
+  setTimeScale(scale: TimeScale): void {
+    // Account for the time so far at the old scale before switching.
+    this.now();
+    this.timeScale = scale;
+    this.reportStats();
+  }
+
+  queue(command: SceneCommand): void {
+    this.pending.push(command);
+    if (this.paused && this.sim) {
+      // Nothing steps while paused: apply now and publish, so the change shows at once.
+      this.applyPending();
+      this.sim.step(0);
+      this.reportStats();
+    }
+  }
+
+  /** A character's gait file, or a type's preset. */
+  gaitJson(command: Extract<SimCommand, { type: 'getParams' | 'getPreset' }>): string {
+    if (!this.sim) throw new Error('no simulation yet');
+    return command.type === 'getParams' ? this.sim.getParams(command.id) : presetJson(this.module, Kind[command.character]);
+  }
+}
+
+/** The scene, once the module has loaded ('init'). */
+let scene: WorkerScene | null = null;
+/** The options of 'init' while the module loads: a pause or a time scale given meanwhile goes into them. */
+let loading: (SimOptions & { timeScale?: TimeScale }) | null = null;
+/** A failure before the scene exists (loading the module). */
+let failedEarly = false;
 
 function fail(error: unknown): void {
-  // The first report is the informative one (an abort is also rethrown as a RuntimeError).
-  if (failed) return;
-  failed = true;
-  clearTimeout(timer);
-  clearInterval(statsTimer);
+  if (scene) {
+    scene.fail(error);
+    return;
+  }
+  if (failedEarly) return;
+  failedEarly = true;
   console.error(error);
   post({ type: 'error', message: errorMessage(error) });
 }
 
-/** Builds a fresh demo scene and hands its render buffer to the main thread. */
-function newScene(): void {
-  if (!module || !options) return;
-  // The previous simulation is gone by now (see 'released'): its pthreads are back in the pool.
-  sim = new Simulation(module, options.threads, options.seed);
-  // The ground first, so that the characters are spawned standing on it.
-  if (terrain !== 'flat' && !sim.setTerrain(terrain)) terrain = 'flat';
-  pending = [];
-  commandLog.length = 0;
-  commandsApplied = 0;
-  learner = null;
-  // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid
-  // (the first group added sizes the layout's grid).
-  addCharacters(options.characters, ALTERNATING);
-  sim.setAutoReset(autoResetSeconds);
-  // What the new scene keeps from the session (goal, auto-reset, gaits of a whole type) opens
-  // its command log, so that the log alone with the seed still replays the run.
-  const carried: SceneCommand[] = [
-    ...(terrain !== 'flat' ? [{ type: 'setTerrain' as const, terrain }] : []),
-    // One goal for all, once one was given to all; until then each type's start goal, which
-    // addCharacters gives every character it spawns.
-    ...(sameGoal(lastGoals.biped, lastGoals.quadruped) ? [{ type: 'setGoal' as const, id: 'all' as const, ...lastGoals.biped }] : []),
-    { type: 'autoReset', seconds: autoResetSeconds },
-    ...Object.entries(typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
-  ];
-  for (const command of carried) commandLog.push({ step: 0, command });
-  // Publish an initial frame (zero steps) so the first thing drawn is the scene as spawned.
-  sim.step(0);
-  generation += 1;
-  post({
-    type: 'ready',
-    generation,
-    memory: module.HEAPU8.buffer as SharedArrayBuffer,
-    header: sim.renderHeader,
-    threads: sim.threads,
-    version: gaitlabVersion(module),
-    schema: module._gl_schema_json ? module.UTF8ToString(module._gl_schema_json()) : null,
-    optimizerSchema: module._gl_opt_settings_json ? module.UTF8ToString(module._gl_opt_settings_json()) : null,
-  });
-  postTerrain();
-  if (!paused) clock.start(now());
-}
-
-const sameGoal = (a: { speed: number; turn: number }, b: { speed: number; turn: number }) =>
-  a.speed === b.speed && a.turn === b.turn;
-
-let autoResetSeconds = 0;
-/** The ground: kept across new scenes, like the goal and the auto-reset. */
-let terrain: TerrainKind = 'flat';
-
-/** Sends the ground's grid and samples to the main thread (a copy, transferred). */
-function postTerrain(): void {
-  if (!sim) return;
-  const grid = sim.terrainGrid();
-  scope.postMessage({ type: 'terrain', generation, grid }, grid.heights ? [grid.heights.buffer] : []);
-}
-
-/**
- * Adds `count` characters in the next free places of the scene's layout (gl_sim_add_characters,
- * which places them and stops when the render buffer is full), then gives each its type's goal
- * and gait of this session.
- */
-function addCharacters(count: number, kindCode: number): void {
-  if (!sim) return;
-  const added = Math.max(0, sim.addCharacters(kindCode, count));
-  const info = sim.characterInfo(); // the added characters are the last ones
-  for (let o = info.length - added * INFO.fields; o < info.length; o += INFO.fields) {
-    const id = info[o + INFO.id];
-    const kind: CharacterType = info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped';
-    sim.setGoal(id, lastGoals[kind].speed, lastGoals[kind].turn);
-    const gait = typeGaits[kind];
-    if (gait && sim.setParams(id, Kind[kind], gait)) delete typeGaits[kind]; // refused: back to the preset
-  }
-}
-
-/** Applies one scene command to the simulation (the start of a fixed step). */
-function apply(command: SceneCommand): void {
-  if (!sim) return;
-  switch (command.type) {
-    case 'setGoal':
-      if (command.id === 'all') {
-        for (const kind of CHARACTER_TYPES) lastGoals[kind] = { speed: command.speed, turn: command.turn };
-      }
-      sim.setGoal(command.id === 'all' ? -1 : command.id, command.speed, command.turn);
-      return;
-    case 'throwBox':
-      sim.throwBox(command.from, command.velocity, command.half);
-      return;
-    case 'drag':
-      sim.drag(command.id, command.segment, command.local, command.target);
-      return;
-    case 'endDrag':
-      sim.endDrag();
-      return;
-    case 'resetCharacter':
-      sim.resetCharacter(command.id);
-      return;
-    case 'resetFallen': {
-      const info = sim.characterInfo();
-      for (let o = 0; o < info.length; o += INFO.fields) {
-        if (info[o + INFO.fallen]) sim.resetCharacter(info[o + INFO.id]);
-      }
-      return;
-    }
-    case 'remove':
-      sim.removeCharacter(command.id);
-      if (learner?.id === command.id) learner = null;
-      return;
-    case 'add':
-      addCharacters(Math.max(0, Math.min(64, Math.floor(command.count))), Kind[command.kind]);
-      return;
-    case 'autoReset':
-      autoResetSeconds = Math.max(0, command.seconds);
-      sim.setAutoReset(autoResetSeconds);
-      return;
-    case 'setParams': {
-      const problem = sim.setParams(command.id === 'all' ? -1 : command.id, Kind[command.character], command.json);
-      if (problem) post({ type: 'commandError', message: `the gait was not applied: ${problem}` });
-      else if (command.id === 'all') typeGaits[command.character] = command.json;
-      return;
-    }
-    case 'learner': {
-      if (learner) sim.removeCharacter(learner.id);
-      learner = null;
-      const id = sim.addApart(Kind[command.character]);
-      if (id < 0) {
-        post({ type: 'commandError', message: 'the learner was not added: the scene is full' });
-        return;
-      }
-      const problem = sim.setParams(id, Kind[command.character], command.json);
-      if (problem) {
-        sim.removeCharacter(id);
-        post({ type: 'commandError', message: `the learner was not added: ${problem}` });
-        return;
-      }
-      sim.setGoal(id, command.speed, command.turn);
-      learner = { id, command, since: sim.time };
-      learnerChanged = true;
-      return;
-    }
-    case 'removeLearner':
-      if (learner) sim.removeCharacter(learner.id);
-      learner = null;
-      return;
-    case 'setTerrain':
-      if (!sim.setTerrain(command.terrain)) {
-        post({ type: 'commandError', message: `this build of the simulation has no '${command.terrain}' terrain` });
-        return;
-      }
-      terrain = command.terrain;
-      postTerrain();
-      return;
-    default: {
-      const unknown: never = command;
-      throw new Error(`unknown scene command ${JSON.stringify(unknown)}`);
-    }
-  }
-}
-
-/** Applies the queued commands, logged with the index of the step they precede. */
-function applyPending(): void {
-  if (!sim || pending.length === 0) return;
-  const step = sim.stepIndex;
-  for (const command of pending) {
-    apply(command);
-    if (commandLog.length >= COMMAND_LOG_LIMIT) commandLog.shift();
-    commandLog.push({ step, command });
-    commandsApplied++;
-  }
-  pending = [];
-}
-
-function characterStatus(): CharacterStatus[] {
-  if (!sim) return [];
-  const info = sim.characterInfo();
-  const out: CharacterStatus[] = [];
-  for (let o = 0; o < info.length; o += INFO.fields) {
-    out.push({
-      id: info[o + INFO.id],
-      type: info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped',
-      position: [info[o + INFO.x], info[o + INFO.y], info[o + INFO.z]],
-      heading: info[o + INFO.heading],
-      speed: info[o + INFO.speed],
-      fallen: info[o + INFO.fallen] !== 0,
-      fallenSeconds: info[o + INFO.fallenSeconds],
-      goal: { speed: info[o + INFO.goalSpeed], turn: info[o + INFO.goalTurn] },
-      phase: info[o + INFO.phase],
-    });
-  }
-  return out;
-}
-
-function reportStats(): void {
-  if (!sim || failed) return;
-  post({
-    type: 'stats',
-    generation,
-    simTime: sim.time,
-    stepIndex: sim.stepIndex,
-    bodies: sim.bodyCount,
-    threads: sim.threads,
-    paused,
-    stepMs: stepsTimed > 0 ? stepWallMs / stepsTimed : 0,
-    droppedSteps,
-    timeScale,
-    characters: characterStatus(),
-    commandsApplied,
-    learner: learner?.id ?? null,
-    terrain,
-  });
-  stepWallMs = 0;
-  stepsTimed = 0;
-  droppedSteps = 0;
-}
-
-/** One turn of the real-time loop: take the steps that are due, then sleep until the next. */
-function tick(): void {
-  timer = undefined;
-  if (failed || !sim) return;
-  try {
-    const { steps, dropped, wait } = clock.tick(now());
-    droppedSteps += dropped;
-    if (steps > 0) {
-      const t0 = performance.now();
-      // The learner starts over every loopSeconds: as a logged command, so the log replays it.
-      if (learner && learner.command.loopSeconds > 0 && sim.time - learner.since >= learner.command.loopSeconds) {
-        pending.push(learner.command);
-      }
-      applyPending();
-      // One call for all due steps: gl_sim_step publishes a frame once, after the last.
-      sim.step(steps);
-      stepWallMs += performance.now() - t0;
-      stepsTimed += steps;
-      if (learnerChanged) {
-        // The main thread marks and follows the learner by id: tell it the new one now.
-        learnerChanged = false;
-        reportStats();
-      }
-    }
-    // Returning to the event loop between ticks is what lets commands in; a timeout of 0 when
-    // behind still does.
-    if (!paused) timer = setTimeout(tick, wait * 1000);
-  } catch (error) {
-    fail(error);
-  }
-}
-
-function schedule(): void {
-  if (timer === undefined && !paused && !failed) timer = setTimeout(tick, 0);
-}
-
-async function init(initial: SimOptions): Promise<void> {
+async function init(options: SimOptions): Promise<void> {
   if (!crossOriginIsolated) {
     throw new Error('the page is not cross-origin isolated, so WASM threads (SharedArrayBuffer) are unavailable');
   }
-  options = initial;
-  paused = initial.paused === true;
-  terrain = initial.terrain ?? 'flat';
-  module = await loadGaitlab(initial.wasmUrl, {
+  loading = { ...options };
+  const module = await loadGaitlab(options.wasmUrl, {
     print: (text) => console.log(`[gaitlab] ${text}`),
     printErr: (text) => console.warn(`[gaitlab] ${text}`),
     onAbort: (what) => fail(new Error(`the WASM module aborted: ${errorMessage(what)}`)),
   });
-  for (const kind of CHARACTER_TYPES) lastGoals[kind] = { speed: module._gl_cruise_speed(Kind[kind]), turn: 0 };
-  newScene();
-  schedule();
-  statsTimer = setInterval(reportStats, STATS_INTERVAL_MS);
+  const { timeScale, ...chosen } = loading;
+  loading = null;
+  scene = new WorkerScene(module, chosen);
+  if (timeScale !== undefined) scene.setTimeScale(timeScale);
+  scene.start();
 }
 
 function handle(command: SimCommand): void {
+  if (command.type === 'init') {
+    init(command.options).catch(fail);
+    return;
+  }
+  if (command.type === 'getParams' || command.type === 'getPreset') {
+    let json: string | null = null;
+    let error: string | null = null;
+    try {
+      if (!scene) throw new Error('no simulation yet');
+      json = scene.gaitJson(command);
+    } catch (e) {
+      error = e instanceof GaitlabError ? e.detail : errorMessage(e);
+    }
+    post({ type: 'params', request: command.request, json, error });
+    return;
+  }
+  if (!scene) {
+    // Still loading: only the loop's settings can be taken now.
+    if (loading && (command.type === 'pause' || command.type === 'resume')) loading.paused = command.type === 'pause';
+    if (loading && command.type === 'timeScale') loading.timeScale = command.scale;
+    return;
+  }
   switch (command.type) {
-    case 'init':
-      init(command.options).catch(fail);
-      return;
     case 'pause':
-      paused = true;
-      clock.stop();
-      clearTimeout(timer);
-      timer = undefined;
-      reportStats();
+      scene.pause();
       return;
     case 'resume':
-      if (!paused) return;
-      paused = false;
-      clock.start(now());
-      schedule();
-      reportStats();
+      scene.resume();
       return;
     case 'reset':
-      if (!sim || resetPending) return;
-      // Freeing the simulation now could let the main thread read released memory; and making
-      // the new one first would need more pthreads than the module's fixed pool holds.
-      resetPending = true;
-      post({ type: 'release', generation });
+      scene.requestReset();
       return;
     case 'step':
-      // One fixed step while paused (while running, steps come from the clock).
-      if (!sim || !paused) return;
-      applyPending();
-      sim.step(Math.max(1, Math.min(1200, Math.floor(command.count ?? 1))));
-      reportStats();
+      scene.stepPaused(command.count ?? 1);
       return;
     case 'timeScale':
-      // Account for the time so far at the old scale before switching.
-      now();
-      timeScale = command.scale;
-      reportStats();
+      scene.setTimeScale(command.scale);
       return;
     case 'scene':
-      pending.push(command.command);
-      if (paused && sim) {
-        // Nothing steps while paused: apply now and publish, so the change shows at once.
-        applyPending();
-        sim.step(0);
-        reportStats();
-      }
+      scene.queue(command.command);
       return;
-    case 'getParams':
-    case 'getPreset': {
-      let json: string | null = null;
-      let error: string | null = null;
-      try {
-        if (!sim) throw new Error('no simulation yet');
-        json = command.type === 'getParams' ? sim.getParams(command.id) : sim.presetJson(Kind[command.character]);
-      } catch (e) {
-        error = errorMessage(e);
-      }
-      post({ type: 'params', request: command.request, json, error });
-      return;
-    }
     case 'released':
-      if (!resetPending || command.generation !== generation || !sim) return;
-      resetPending = false;
-      sim.destroy();
-      sim = null;
-      newScene();
-      schedule();
+      scene.released(command.generation);
       return;
     default: {
       const unknown: never = command;
@@ -464,7 +599,7 @@ function handle(command: SimCommand): void {
 }
 
 scope.onmessage = (event) => {
-  if (failed) return;
+  if (scene?.hasFailed || failedEarly) return;
   try {
     handle(event.data);
   } catch (error) {

@@ -162,11 +162,37 @@ int fail(int code, std::string message) {
   return code;
 }
 
+// The kinds are numbered once (gait::Character); the ABI's numbers and the simulation's say the same.
+static_assert(GL_KIND_BIPED == static_cast<int>(gaitlab::gait::Character::Biped) &&
+              GL_KIND_QUADRUPED == static_cast<int>(gaitlab::gait::Character::Quadruped));
+static_assert(GL_KIND_BIPED == static_cast<int>(Kind::Biped) && GL_KIND_QUADRUPED == static_cast<int>(Kind::Quadruped) &&
+              GL_KIND_BOX == static_cast<int>(Kind::Box));
+
 bool characterKind(int kind, gaitlab::gait::Character* c) {
-  if (kind == GL_KIND_BIPED) *c = gaitlab::gait::Character::Biped;
-  else if (kind == GL_KIND_QUADRUPED) *c = gaitlab::gait::Character::Quadruped;
-  else return false;
-  return true;
+  const auto character = gaitlab::gait::characterFromKind(kind);
+  if (character) *c = *character;
+  return character.has_value();
+}
+
+thread_local std::string g_normalized;  // gl_gait_normalize()
+
+// The characters a parameter call addresses: the one with id `characterId`, or with -1 every
+// character of `c`. Returns GL_OK or the error (message set).
+int targetsOf(const Simulation& simulation, int characterId, gaitlab::gait::Character c, std::vector<int>* targets) {
+  using namespace gaitlab::gait;
+  if (characterId < 0) {
+    for (int i = 0; i < simulation.characterCount(); ++i) {
+      if (characterOf(simulation.character(i).morphology()) == c) targets->push_back(i);
+    }
+    if (targets->empty()) return fail(GL_ERR_NO_CHARACTER, std::string("no ") + characterName(c) + " in the simulation");
+    return GL_OK;
+  }
+  const int i = simulation.characterIndex(characterId);
+  if (i < 0) return fail(GL_ERR_NO_CHARACTER, "no character with id " + std::to_string(characterId));
+  if (characterOf(simulation.character(i).morphology()) != c)
+    return fail(GL_ERR_KIND, "character " + std::to_string(characterId) + " is not a " + characterName(c));
+  targets->push_back(i);
+  return GL_OK;
 }
 }  // namespace
 
@@ -190,22 +216,41 @@ int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
   if (!characterKind(kind, &c)) return fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
   Simulation& simulation = *sim(s);
   std::vector<int> targets;
-  if (characterId < 0) {
-    for (int i = 0; i < simulation.characterCount(); ++i) {
-      if (characterOf(simulation.character(i).morphology()) == c) targets.push_back(i);
-    }
-    if (targets.empty()) return fail(GL_ERR_NO_CHARACTER, std::string("no ") + characterName(c) + " in the simulation");
-  } else {
-    const int i = simulation.characterIndex(characterId);
-    if (i < 0) return fail(GL_ERR_NO_CHARACTER, "no character with id " + std::to_string(characterId));
-    if (characterOf(simulation.character(i).morphology()) != c)
-      return fail(GL_ERR_KIND, "character " + std::to_string(characterId) + " is not a " + characterName(c));
-    targets.push_back(i);
-  }
+  if (const int code = targetsOf(simulation, characterId, c, &targets)) return code;
   GaitFile file;
   if (const auto error = parseGaitFile(text ? text : "", c, &file))
     return fail(GL_ERR_INVALID_PARAMS, error->describe());
   for (int i : targets) simulation.controller(i).setParams(file.params);
+  g_error.clear();
+  return GL_OK;
+}
+
+const char* gl_gait_normalize(const char* text) {
+  if (const auto error = gaitlab::gait::normalizeGaitFile(text ? text : "", &g_normalized)) {
+    fail(GL_ERR_INVALID_PARAMS, error->describe());
+    return nullptr;
+  }
+  g_error.clear();
+  return g_normalized.c_str();
+}
+
+int gl_sim_patch_params(void* s, int characterId, int kind, const char* patch) {
+  using namespace gaitlab::gait;
+  Character c;
+  if (!characterKind(kind, &c)) return fail(GL_ERR_KIND, "kind " + std::to_string(kind) + " is not a character");
+  Simulation& simulation = *sim(s);
+  std::vector<int> targets;
+  if (const int code = targetsOf(simulation, characterId, c, &targets)) return code;
+  // The values are checked once, against the schema, before any character changes: the patch
+  // is applied to a scratch copy first, then to each character's own parameters.
+  GaitParams scratch = defaultParams(c);
+  const std::string text = patch ? patch : "";
+  if (const auto error = applyParamsPatch(c, text, &scratch)) return fail(GL_ERR_INVALID_PARAMS, error->describe());
+  for (int i : targets) {
+    GaitParams params = simulation.controller(i).params();
+    applyParamsPatch(c, text, &params);
+    simulation.controller(i).setParams(params);
+  }
   g_error.clear();
   return GL_OK;
 }

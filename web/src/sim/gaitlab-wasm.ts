@@ -4,6 +4,7 @@
 // to the Module object. Its memory is fixed-size and shared (pthreads), so HEAPU8.buffer is a
 // SharedArrayBuffer that stays valid for the module's lifetime.
 import { FLAT_GROUND, type TerrainGrid, type TerrainKind } from './terrain-grid';
+import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
 
 /** The parts of the Emscripten Module that gaitlab uses. Pointers are byte offsets (numbers). */
 export interface GaitlabModule {
@@ -39,11 +40,13 @@ export interface GaitlabModule {
   _malloc(bytes: number): number;
   _free(pointer: number): void;
   HEAPF64: Float64Array;
-  // The parameter schema (schema issue); absent from builds before it.
+  // The parameter schema and gait files (c_api.h, "Gait parameters"); absent from builds before them.
   _gl_schema_json?(): number;
   _gl_preset_json?(kind: number): number;
   _gl_sim_set_params?(sim: number, id: number, kind: number, json: number): number;
   _gl_sim_get_params?(sim: number, id: number): number;
+  _gl_sim_patch_params?(sim: number, id: number, kind: number, patch: number): number;
+  _gl_gait_normalize?(json: number): number;
   _gl_last_error?(): number;
   // The optimiser's settings table (the optimize panel; absent from builds before it).
   _gl_opt_settings_json?(): number;
@@ -82,8 +85,34 @@ export interface GaitlabModuleOptions {
 
 export type GaitlabFactory = (options?: GaitlabModuleOptions) => Promise<GaitlabModule>;
 
-/** Kinds for gl_sim_spawn. */
-export const Kind = { biped: 0, quadruped: 1, box: 2 } as const;
+/** Kinds for gl_sim_spawn: the character types in their order (gait/character.ts), then the box. */
+export const Kind = {
+  ...(Object.fromEntries(CHARACTER_TYPES.map((t, i) => [t, i])) as Record<CharacterType, number>),
+  box: CHARACTER_TYPES.length,
+} as const;
+
+/** Calls `call` with `text` as a C string in module memory (freed afterwards). */
+function withCString<T>(module: GaitlabModule, text: string, call: (pointer: number) => T): T {
+  const bytes = module.lengthBytesUTF8(text) + 1;
+  const pointer = module._malloc(bytes);
+  try {
+    module.stringToUTF8(text, pointer, bytes);
+    return call(pointer);
+  } finally {
+    module._free(pointer);
+  }
+}
+
+/**
+ * A gait file's JSON validated and normalised by the module (gl_gait_normalize): the current
+ * schema version, every parameter, canonical values. Throws the module's "FIELD: WHAT".
+ */
+export function normalizeGait(module: GaitlabModule, json: string): string {
+  if (!module._gl_gait_normalize) throw new Error('this build of the module cannot read gait files (no gl_gait_normalize)');
+  const out = withCString(module, json, (pointer) => module._gl_gait_normalize!(pointer));
+  if (!out) throw new Error(module._gl_last_error ? module.UTF8ToString(module._gl_last_error()) : 'refused');
+  return module.UTF8ToString(out);
+}
 
 /** Loads the ES6 build from `url` (absolute, or relative to the calling module's origin). */
 export async function loadGaitlab(url: string, options: GaitlabModuleOptions = {}): Promise<GaitlabModule> {
@@ -203,7 +232,7 @@ export class Simulation {
     return this.module.HEAPF64.slice(start, start + Math.min(n, count) * INFO.fields);
   }
 
-  // ---- Gait parameters (the schema issue's C API; absent from builds before it) ----
+  // ---- Gait parameters (c_api.h, "Gait parameters"; absent from builds before them) ----
 
   private requireSchema(): void {
     if (!this.module._gl_sim_get_params) throw new Error('this build of the module has no parameter schema');
@@ -232,14 +261,15 @@ export class Simulation {
   /** Sets parameters (gait file JSON) of `id` or of every character of `kind` (id −1); returns null or the problem. */
   setParams(id: number, kind: number, json: string): string | null {
     if (!this.module._gl_sim_set_params) return 'this build of the module has no parameter schema';
-    const bytes = this.module.lengthBytesUTF8(json) + 1;
-    const pointer = this.module._malloc(bytes);
-    try {
-      this.module.stringToUTF8(json, pointer, bytes);
-      return this.module._gl_sim_set_params(this.sim, id, kind, pointer) === 0 ? null : this.lastError();
-    } finally {
-      this.module._free(pointer);
-    }
+    const code = withCString(this.module, json, (pointer) => this.module._gl_sim_set_params!(this.sim, id, kind, pointer));
+    return code === 0 ? null : this.lastError();
+  }
+
+  /** Changes some parameters ({name: value} JSON) of `id` or of every character of `kind` (id −1), all or nothing; returns null or the problem ("NAME: WHAT"). */
+  patchParams(id: number, kind: number, patch: string): string | null {
+    if (!this.module._gl_sim_patch_params) return 'this build of the module cannot patch parameters';
+    const code = withCString(this.module, patch, (pointer) => this.module._gl_sim_patch_params!(this.sim, id, kind, pointer));
+    return code === 0 ? null : this.lastError();
   }
 
   // ---- Terrain ----

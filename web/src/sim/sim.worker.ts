@@ -1,13 +1,13 @@
-// The sim worker: owns the WASM module and runs the fixed-step loop in real time (DESIGN.md, data
-// flow step 2). The simulation never runs on the browser's main thread: a step blocks (the
+// The sim worker: owns the WASM module and runs the fixed-step loop in real time (README.md,
+// architecture). The simulation never runs on the browser's main thread: a step blocks (the
 // thread pool waits on futexes, which the main thread may not do) and takes milliseconds.
 //
 // This worker is also the Emscripten "main thread" of the module, so the module's pthread pool
 // consists of workers nested in this one.
 import { FixedStepClock } from './fixed-step-clock';
-import { gaitlabVersion, INFO, Kind, loadGaitlab, Simulation, type GaitlabModule } from './gaitlab-wasm';
+import { gaitlabVersion, INFO, Kind, loadGaitlab, normalizeGait, Simulation, type GaitlabModule } from './gaitlab-wasm';
 import type { TerrainKind } from './terrain-grid';
-import { CHARACTER_TYPES } from '../share/gait-file';
+import { CHARACTER_TYPES, typeOfKind } from '../gait/character';
 import {
   errorMessage,
   type CharacterStatus,
@@ -246,6 +246,20 @@ function apply(command: SceneCommand): void {
       else if (command.id === 'all') typeGaits[command.character] = command.json;
       return;
     }
+    case 'patchParams': {
+      const who = command.id === 'all' ? `every ${command.character}` : `${command.character} #${command.id}`;
+      const problem = sim.patchParams(command.id === 'all' ? -1 : command.id, Kind[command.character], JSON.stringify(command.patch));
+      const error = problem ? `the edit of ${who} (patchParams) was refused: ${problem}` : null;
+      if (!problem && command.id === 'all') {
+        // Characters added later walk with the type's gait as edited: the first of the type's, as
+        // the editors show it.
+        const first = characterStatus().find((c) => c.type === command.character);
+        if (first) typeGaits[command.character] = sim.getParams(first.id);
+      }
+      if (command.request !== undefined) post({ type: 'patched', request: command.request, error });
+      else if (error) post({ type: 'commandError', message: error });
+      return;
+    }
     case 'learner': {
       if (learner) sim.removeCharacter(learner.id);
       learner = null;
@@ -305,7 +319,7 @@ function characterStatus(): CharacterStatus[] {
   for (let o = 0; o < info.length; o += INFO.fields) {
     out.push({
       id: info[o + INFO.id],
-      type: info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped',
+      type: typeOfKind(info[o + INFO.kind]) ?? 'biped',
       position: [info[o + INFO.x], info[o + INFO.y], info[o + INFO.z]],
       heading: info[o + INFO.heading],
       speed: info[o + INFO.speed],
@@ -444,12 +458,18 @@ function handle(command: SimCommand): void {
       }
       return;
     case 'getParams':
-    case 'getPreset': {
+    case 'getPreset':
+    case 'normalize': {
       let json: string | null = null;
       let error: string | null = null;
       try {
-        if (!sim) throw new Error('no simulation yet');
-        json = command.type === 'getParams' ? sim.getParams(command.id) : sim.presetJson(Kind[command.character]);
+        if (command.type === 'normalize') {
+          if (!module) throw new Error('the module is not loaded yet');
+          json = normalizeGait(module, command.json);
+        } else {
+          if (!sim) throw new Error('no simulation yet');
+          json = command.type === 'getParams' ? sim.getParams(command.id) : sim.presetJson(Kind[command.character]);
+        }
       } catch (e) {
         error = errorMessage(e);
       }

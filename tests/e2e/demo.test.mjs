@@ -458,6 +458,24 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await chooser.setFiles(file);
     await page.waitForTimeout(1000);
     assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, after.params, 'import gives the exported gait back');
+    // A file the module refuses is not imported, and the page shows the module's reason, field named.
+    const bad = path.join(resultsDir, 'refused-gait.json');
+    fs.writeFileSync(bad, JSON.stringify({ ...exported, params: { ...exported.params, period: 99 } }));
+    const [badChooser] = await Promise.all([page.waitForEvent('filechooser'), page.getByRole('button', { name: 'Import JSON' }).click()]);
+    await badChooser.setFiles(bad);
+    const refusal = page.getByRole('status').locator('.message-problem', { hasText: 'refused-gait.json was not imported' });
+    await refusal.waitFor({ timeout: PAGE_TIMEOUT });
+    assert.match(await refusal.innerText(), /period: 99(\.0)? is outside \[/);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, after.params, 'a refused file changes nothing');
+    // A file of schema version 1 is migrated by the module, not refused.
+    const old = path.join(resultsDir, 'version-1-gait.json');
+    const { 'gains.swingTargetRate': _, ...v1params } = exported.params;
+    fs.writeFileSync(old, JSON.stringify({ ...exported, version: 1, params: { ...v1params, 'legFrame.supportGain': 800 } }));
+    const [oldChooser] = await Promise.all([page.waitForEvent('filechooser'), page.getByRole('button', { name: 'Import JSON' }).click()]);
+    await oldChooser.setFiles(old);
+    await page.getByRole('status').getByText('Imported version-1-gait.json.').waitFor({ timeout: PAGE_TIMEOUT });
+    await page.waitForTimeout(500);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, { ...after.params, 'gains.swingTargetRate': 0 }, 'a version-1 file is migrated');
     assert.deepEqual(problems, [], 'no page errors');
     await page.close();
   });

@@ -123,7 +123,11 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   const json& cj = doc["character"];
   const std::optional<Character> character =
       cj.is_string() ? characterFromName(cj.get<std::string>()) : std::nullopt;
-  if (!character) return ParamsError{"character", "expected \"biped\" or \"quadruped\", got " + cj.dump()};
+  if (!character) {
+    std::string names;
+    for (Character c : kCharacters) names += std::string(names.empty() ? "" : " or ") + "\"" + characterName(c) + "\"";
+    return ParamsError{"character", "expected " + names + ", got " + cj.dump()};
+  }
   if (expected && *expected != *character)
     return ParamsError{"character", std::string("the file is for a ") + characterName(*character) +
                                         ", not a " + characterName(*expected)};

@@ -19,8 +19,8 @@ export interface GaitTarget {
   character: CharacterType;
 }
 
-/** Sends a patch to the simulation; resolves when it is accepted, rejects with the refusal. */
-export type PatchSender = (target: GaitTarget, patch: ParamPatch) => Promise<void>;
+/** Sends a patch to the simulation; resolves with what it accepted, rejects with the refusal. */
+export type PatchSender = (target: GaitTarget, patch: ParamPatch) => Promise<ParamPatch | void>;
 
 export interface GaitModelEvents {
   /** The shown gait changed for another reason than an edit the editors made themselves (undo, a refusal, a load). */
@@ -141,8 +141,9 @@ export class GaitModel {
     this.pending.push({ seq, patch });
     this.shown = patched(this.shown, patch);
     if (notify) this.events.changed(this.shown);
+    let accepted: ParamPatch | void;
     try {
-      await this.send(this.targetNow, patch);
+      accepted = await this.send(this.targetNow, patch);
     } catch (error) {
       const message = error instanceof Error ? error.message : String(error);
       if (epoch === this.epoch) {
@@ -158,7 +159,8 @@ export class GaitModel {
       return message;
     }
     if (epoch === this.epoch) {
-      this.confirmed = patched(this.confirmed!, patch);
+      // What the simulation says it took (the same values, as the worker answers).
+      this.confirmed = patched(this.confirmed!, accepted ?? patch);
       this.pending = this.pending.filter((p) => p.seq !== seq);
     }
     return null;

@@ -162,8 +162,11 @@ export type SimEvent =
     }
   /** Answer to getParams / getPreset / normalize: the gait file's JSON, or why there is none. */
   | { type: 'params'; request: number; json: string | null; error: string | null }
-  /** Answer to a patchParams with a request: null when the simulation accepted it, else the refusal (command and parameter named). */
-  | { type: 'patched'; request: number; error: string | null }
+  /**
+   * Answer to a patchParams with a request: the patch the simulation accepted, or null and the
+   * refusal (the command and the parameter named).
+   */
+  | { type: 'patched'; request: number; accepted: ParamPatch | null; error: string | null }
   /**
    * The ground of scene `generation` changed (or the scene is new): its grid and samples, to draw
    * it exactly as the physics has it. Sent after `ready` and after every setTerrain.

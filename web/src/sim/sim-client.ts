@@ -68,8 +68,10 @@ export class SimClient {
    * An edit of character `id`'s parameters (or of every character of the type): resolves when
    * the simulation accepted it, rejects with its refusal (the command and the parameter named).
    */
-  patchParams(id: number | 'all', character: CharacterType, patch: ParamPatch): Promise<void> {
-    return this.request((request) => ({ type: 'scene', command: { type: 'patchParams', id, character, patch, request } })).then(() => {});
+  patchParams(id: number | 'all', character: CharacterType, patch: ParamPatch): Promise<ParamPatch> {
+    return this.request((request) => ({ type: 'scene', command: { type: 'patchParams', id, character, patch, request } })).then(
+      (accepted) => JSON.parse(accepted) as ParamPatch,
+    );
   }
 
   private request(make: (request: number) => SimCommand): Promise<string> {
@@ -128,8 +130,8 @@ export class SimClient {
         const pending = this.requests.get(event.request);
         this.requests.delete(event.request);
         if (!pending) return;
-        if (event.error === null) pending.resolve('');
-        else pending.reject(new Error(event.error));
+        if (event.accepted !== null) pending.resolve(JSON.stringify(event.accepted));
+        else pending.reject(new Error(event.error ?? 'the edit was refused'));
         return;
       }
       case 'terrain':

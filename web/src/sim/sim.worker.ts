@@ -183,7 +183,7 @@ function postTerrain(): void {
 }
 
 /** Places `count` characters on the next free grid places, centred on the origin. */
-function addCharacters(count: number, type: (i: number) => 'biped' | 'quadruped'): void {
+function addCharacters(count: number, type: (i: number) => CharacterType): void {
   if (!sim || !options) return;
   const rows = Math.max(1, Math.ceil(options.characters / gridColumns));
   for (let i = 0; i < count; i++) {
@@ -256,7 +256,7 @@ function apply(command: SceneCommand): void {
         const first = characterStatus().find((c) => c.type === command.character);
         if (first) typeGaits[command.character] = sim.getParams(first.id);
       }
-      if (command.request !== undefined) post({ type: 'patched', request: command.request, error });
+      if (command.request !== undefined) post({ type: 'patched', request: command.request, accepted: error ? null : command.patch, error });
       else if (error) post({ type: 'commandError', message: error });
       return;
     }

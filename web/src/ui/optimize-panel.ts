@@ -25,7 +25,7 @@ import {
 } from '../optimize/options';
 import { fitRange, tickLabels } from '../optimize/chart';
 import type { GenerationReport, OptimizerCommand, OptimizerEvent } from '../optimize/protocol';
-import type { CharacterType } from '../gait/character';
+import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
 import type { GaitFile } from '../share/gait-file';
 import { errorMessage, type CharacterStatus } from '../sim/protocol';
 import type { GaitTransfer } from './gait-transfer';
@@ -142,7 +142,7 @@ export class OptimizePanel {
     const form = defaultForm(host.optimizerSchema, host.defaultThreads);
     const grid = el('div', { className: 'opt-grid' });
     grid.append(
-      this.select('character', 'character', ['biped', 'quadruped'], form.character, 'the type of character whose gait is searched'),
+      this.select('character', 'character', CHARACTER_TYPES, form.character, 'the type of character whose gait is searched'),
       this.select('method', 'method', METHODS, form.method, 'greedy: the thesis\'s greedy stochastic search (§3.3); cmaes: CMA-ES'),
       this.select('start', 'start from', ['preset', 'selected'], form.start, 'the type\'s preset gait, or the selected character\'s gait as it is now'),
     );

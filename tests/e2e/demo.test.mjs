@@ -458,6 +458,65 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await chooser.setFiles(file);
     await page.waitForTimeout(1000);
     assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, after.params, 'import gives the exported gait back');
+    // A file the module refuses is not imported, and the page shows the module's reason, field named.
+    const bad = path.join(resultsDir, 'refused-gait.json');
+    fs.writeFileSync(bad, JSON.stringify({ ...exported, params: { ...exported.params, period: 99 } }));
+    const [badChooser] = await Promise.all([page.waitForEvent('filechooser'), page.getByRole('button', { name: 'Import JSON' }).click()]);
+    await badChooser.setFiles(bad);
+    const refusal = page.getByRole('status').locator('.message-problem', { hasText: 'refused-gait.json was not imported' });
+    await refusal.waitFor({ timeout: PAGE_TIMEOUT });
+    assert.match(await refusal.innerText(), /period: 99(\.0)? is outside \[/);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, after.params, 'a refused file changes nothing');
+    // A file of schema version 1 is migrated by the module, not refused.
+    const old = path.join(resultsDir, 'version-1-gait.json');
+    const { 'gains.swingTargetRate': _, ...v1params } = exported.params;
+    fs.writeFileSync(old, JSON.stringify({ ...exported, version: 1, params: { ...v1params, 'legFrame.supportGain': 800 } }));
+    const [oldChooser] = await Promise.all([page.waitForEvent('filechooser'), page.getByRole('button', { name: 'Import JSON' }).click()]);
+    await oldChooser.setFiles(old);
+    await page.getByRole('status').getByText('Imported version-1-gait.json.').waitFor({ timeout: PAGE_TIMEOUT });
+    await page.waitForTimeout(500);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, { ...after.params, 'gains.swingTargetRate': 0 }, 'a version-1 file is migrated');
+    assert.deepEqual(problems, [], 'no page errors');
+    await page.close();
+  });
+
+  it('an edit the simulation refuses is taken back in the editors, with a message naming the command and the parameter', { timeout: TEST_TIMEOUT }, async (t) => {
+    const { page, problems } = await openPage(`${server.url}?characters=2`);
+    await ready(page);
+    if (await needsSchema(t, page)) return;
+    await page.evaluate(() => window.gaitlab.select(0));
+    await page.locator('.curve-editor canvas').first().waitFor({ timeout: PAGE_TIMEOUT });
+    await page.waitForFunction(() => window.gaitlab.editorGait() !== null, null, { timeout: PAGE_TIMEOUT });
+    const name = await page.locator('.curve-editor').first().getAttribute('data-param');
+    const before = await page.evaluate(() => window.gaitlab.getGait(0));
+    const knot = page.getByLabel(`${name} knot 2`, { exact: false });
+    const shown = await knot.inputValue();
+    // An accepted edit reaches the simulation as a patch of that one parameter.
+    const moved = before.params[name][1] === 0 ? 0.01 : before.params[name][1] / 2;
+    const accepted = await page.evaluate(([n, v]) => window.gaitlab.editGait({ [n]: window.gaitlab.editorGait().params[n].map((x, k) => (k === 1 ? v : x)) }), [name, moved]);
+    assert.equal(accepted, null);
+    const edited = await page.evaluate(() => window.gaitlab.getGait(0));
+    assert.equal(edited.params[name][1], moved, 'the edit reached the simulation');
+    assert.deepEqual({ ...edited.params, [name]: before.params[name] }, before.params, 'and nothing else changed');
+    // A value beyond the schema's bounds, as an editor out of step with the schema would send it:
+    // refused by the module, naming the command and the parameter; the editors show the gait the
+    // simulation has, and the page says why.
+    const refusal = await page.evaluate((n) => window.gaitlab.editGait({ period: 99, [n]: [0, 0, 0, 0] }), name);
+    assert.match(refusal, /patchParams/);
+    assert.match(refusal, /period: 99(\.0)? is outside \[/);
+    const [running, editor] = await page.evaluate(() => Promise.all([window.gaitlab.getGait(0), window.gaitlab.editorGait()]));
+    assert.deepEqual(running.params, edited.params, 'nothing of the refused edit reached the simulation');
+    assert.deepEqual(editor.params, running.params, 'the editors show what the simulation has');
+    assert.equal(await knot.inputValue(), String(Number(moved.toPrecision(5))), 'the curve editor was reverted');
+    assert.notEqual(await knot.inputValue(), '0');
+    assert.notEqual(shown, await knot.inputValue());
+    const message = page.getByRole('status').locator('.message-problem').last();
+    await message.waitFor({ timeout: PAGE_TIMEOUT });
+    assert.match(await message.innerText(), /patchParams.*period/s);
+    // Undo takes the accepted edit back, through the same path.
+    await page.getByRole('button', { name: 'Undo' }).click();
+    await page.waitForTimeout(800);
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.getGait(0))).params, before.params, 'undo');
     assert.deepEqual(problems, [], 'no page errors');
     await page.close();
   });
@@ -473,6 +532,8 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
       const good = (await link.encodeGaitHash(gait)).slice(1);
       const scalar = Object.keys(gait.params).find((k) => typeof gait.params[k] === 'number');
       const outOfBounds = (await link.encodeGaitHash({ ...gait, params: { ...gait.params, [scalar]: 1e9 } })).slice(1);
+      // Well-formed JSON that is not a gait: the module names the field.
+      const malformed = (await link.encodeGaitHash({ ...gait, params: [1, 2] })).slice(1);
       // JSON cannot say Infinity, but 1e999 reads as Infinity: build that link by hand.
       const json = JSON.stringify({ ...gait, params: { ...gait.params, [scalar]: 12345.5 } }).replace('12345.5', '1e999');
       const text = new TextEncoder().encode(json);
@@ -489,17 +550,23 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
         tooLong: `gait=1.9000.${'A'.repeat(9000)}`,
         unknownVersion: good.replace(/^gait=1\./, 'gait=7.'),
         outOfBounds,
+        malformed,
         notFinite: `gait=1.${data.length}.${data}`,
+        scalar,
       };
     });
     await page.close();
+    // The gait inside a link is the module's to judge: its refusals name the field ("FIELD: WHAT").
+    const { scalar } = links;
+    delete links.scalar;
     const expected = {
       truncated: /truncated/,
       corrupt: /damaged|not a JSON gait/,
       tooLong: /at most \d+ are accepted/,
       unknownVersion: /format version 7/,
-      outOfBounds: /out of bounds/,
-      notFinite: /not a finite number/,
+      outOfBounds: new RegExp(`: ${scalar}: 1000000000(\\.0)? is outside \\[`),
+      malformed: /: params: expected an object, got an array of 2/,
+      notFinite: /number overflow parsing '1e999'/,
     };
     // The first kind on a fresh page (a link opened in a new tab), the others by changing the
     // hash of that page (a link pasted into the address bar of an open page).

@@ -218,6 +218,10 @@ describe('optimize panel', { timeout: TEST_TIMEOUT * 3 }, () => {
     const url = await panel.getByLabel('result link').inputValue();
     assert.match(url, /#gait=1\.\d+\.[A-Za-z0-9_-]+$/);
     assert.equal(url, await page.evaluate(() => window.gaitlab.optimizeShareUrl()));
+    // The gait editors show the applied result, and share it with the same link: one transfer
+    // module for both (web/src/ui/gait-transfer.ts).
+    assert.deepEqual((await page.evaluate(() => window.gaitlab.editorGait())).params, result.params, 'the editors show the result');
+    assert.equal(await page.evaluate((id) => window.gaitlab.shareUrl(id), biped.id), url, 'the editors share the same link');
     const shared = await openPage(url);
     await shared.page.getByRole('status').getByText(/gait loaded from the link/).waitFor({ timeout: PAGE_TIMEOUT });
     const sharedBiped = (await shared.page.evaluate(() => window.gaitlab.characters())).find((c) => c.type === 'biped');

@@ -98,7 +98,10 @@ test('schema --json is the same document natively and as WASM, with the presets 
     const entries = schema.characters[character];
     assert.deepEqual(entries.map((e) => e.name), Object.keys(file.params));
     for (const e of entries) {
-      assert.deepEqual(Object.keys(e).sort(), ['default', 'description', 'group', 'knots', 'max', 'min', 'name', 'unit']);
+      // A per-leg or per-leg-frame parameter names its leg or leg frame too.
+      const owner = Object.keys(e).filter((k) => k === 'leg' || k === 'legFrame');
+      assert.ok(owner.length <= 1, e.name);
+      assert.deepEqual(Object.keys(e).sort(), ['default', 'description', 'field', 'group', 'knots', 'max', 'min', 'name', 'unit', ...owner].sort());
       assert.deepEqual(e.default, file.params[e.name], e.name);
       assert.equal(Array.isArray(e.default) ? e.default.length : 1, e.knots, e.name);
     }

@@ -1,7 +1,6 @@
 // The demo page: a sim worker simulates a crowd in real time; this main thread draws it, reading
-// the newest transforms out of shared WASM memory each animation frame (DESIGN.md, data flow
-// steps 2–3), and turns clicks, drags, keys and the control panel into commands for the worker
-// (data flow step 1).
+// the newest transforms out of shared WASM memory each animation frame (README.md, architecture),
+// and turns clicks, drags, keys and the control panel into commands for the worker.
 import './style.css';
 import * as THREE from 'three';
 import { CrowdMesh } from './render/crowd-mesh';
@@ -14,103 +13,17 @@ import {
   type CharacterStatus,
   type SceneCommand,
   type TimeScale,
-  type Vec3,
 } from './sim/protocol';
 import { SimClient } from './sim/sim-client';
 import { groundHeight, isTerrainKind, type TerrainKind } from './sim/terrain-grid';
 import { ControlPanel } from './ui/control-panel';
-import { GaitSession } from './ui/gait-session';
-import { LEARNER_COLOUR, OptimizePanel, type OptimizeStatus } from './ui/optimize-panel';
-import type { OptimizeForm, OptimizerSchema } from './optimize/options';
+import { GaitEditors } from './ui/gait-editors';
+import { GaitTransfer } from './ui/gait-transfer';
+import { LEARNER_COLOUR, OptimizePanel } from './ui/optimize-panel';
+import type { OptimizerSchema } from './optimize/options';
 import { Overlay } from './ui/overlay';
 import { RateMeter } from './ui/rate-meter';
-import type { GaitFile } from './share/gait-file';
-
-/** What `window.gaitlab.stats()` returns (the read-only test hook, DESIGN.md contracts). */
-export interface GaitlabStats {
-  characters: number;
-  fallen: number;
-  /** Simulated seconds of the frame on screen. */
-  simTime: number;
-  /** Simulated seconds per wall-clock second, smoothed (1 = real time). */
-  realtimeFactor: number;
-  /** Rendered frames per second, smoothed. */
-  fps: number;
-  threads: number;
-  crossOriginIsolated: boolean;
-  /** WebGL draw calls of the last frame (shadow pass included): constant in the crowd's size. */
-  drawCalls: number;
-  /** How the page got its threads: 'headers', 'service worker' or 'none'. */
-  isolation: string;
-  /** Bodies in the frame on screen. */
-  bodies: number;
-  paused: boolean;
-  timeScale: TimeScale;
-  /** True once a simulated frame has been drawn. */
-  ready: boolean;
-  /** The problem shown on the page, if any. */
-  error: string | null;
-  /** Whether this build has the parameter schema (gait editing and sharing). */
-  gaits: boolean;
-  selected: number | null;
-  /** The ground the simulation reports, and the one the page draws (they differ for a moment after a change). */
-  terrain: TerrainKind;
-  drawnTerrain: TerrainKind | null;
-}
-
-export interface GaitlabHook {
-  stats(): GaitlabStats;
-  characters(): CharacterStatus[];
-  getGait(id: number): Promise<GaitFile>;
-  shareUrl(id: number): Promise<string>;
-  /** The preset gait of a type, as the module has it. */
-  presetGait(type: 'biped' | 'quadruped'): Promise<GaitFile>;
-  throwBox(target: Vec3): void;
-  setGoal(id: number | 'all', goal: { speed: number; turn: number }): void;
-  select(id: number | null): void;
-  /** `count` fixed steps while paused. */
-  step(count: number): void;
-  pause(): void;
-  resume(): void;
-  /** Screen position (CSS pixels) of character `id`'s root body, for tests that click it. */
-  screenPosition(id: number): { x: number; y: number } | null;
-
-  // ---- The optimize panel (issue 6). These drive the panel itself, as its buttons do. ----
-
-  /**
-   * Starts a search as the panel's Start button does, after writing `form` into the panel's
-   * fields (as text, as if typed; fields left out keep their values). Field names: character
-   * ('biped' | 'quadruped'), method ('greedy' | 'cmaes'), start ('preset' | 'selected'),
-   * generations, candidates, seed, threads, speeds ("0.5, 1"), and every objective setting by
-   * its gl_opt_settings_json name (seconds, warmup, starts, turnRate, wd, …). Resolves with
-   * optimizeStatus() when the search ends (state 'done', or 'stopped' after stopOptimize());
-   * rejects with the panel's message if the form is refused (every problem, each naming its
-   * field) or the search fails.
-   */
-  optimize(form?: OptimizeForm): Promise<OptimizeStatus>;
-  /** The panel's state: progress, history of the best objective, the chart's point count, the result. */
-  optimizeStatus(): OptimizeStatus;
-  /** The panel's Stop: ends the search at once, keeping the best of the finished generations. */
-  stopOptimize(): void;
-  /** The panel's Apply: the result to the selected character or to every character of its type. */
-  applyOptimizeResult(target: 'selected' | 'all'): Promise<void>;
-  /** The panel's Share: a link to this page carrying the result. */
-  optimizeShareUrl(): Promise<string>;
-  /** The learner's id (the character walking the best so far), or null. */
-  learner(): number | null;
-  /** Changes the ground (as the control panel does): flat, slope or bumps. */
-  setTerrain(kind: TerrainKind): void;
-  /** Height of the drawn ground at (x, z): from the samples the page drew, the physics' own. */
-  groundHeight(x: number, z: number): number | null;
-  /** Puts the camera at `from` looking at `to` (screenshots and tests; orbiting continues from there). */
-  view(from: Vec3, to: Vec3): void;
-}
-
-declare global {
-  interface Window {
-    gaitlab: GaitlabHook;
-  }
-}
+import { installTestHook } from './test-hook';
 
 const canvas = document.querySelector<HTMLCanvasElement>('#scene');
 if (!canvas) throw new Error('index.html has no <canvas id="scene">');
@@ -140,7 +53,7 @@ const crowd = new CrowdMesh();
 const ring = new SelectionRing();
 /** Marks the optimize panel's learner: a wider ring, in the chart's colour. */
 const learnerRing = new SelectionRing(new THREE.Color(LEARNER_COLOUR).getHex(), 0.7);
-let gaits: GaitSession | null = null;
+let gaits: GaitEditors | null = null;
 let optimizer: OptimizePanel | null = null;
 /** The learner's id as the worker last reported it. */
 let learnerId: number | null = null;
@@ -194,7 +107,7 @@ const panel = new ControlPanel({
   terrain: (kind) => send({ type: 'setTerrain', terrain: kind }),
 });
 
-const hook: GaitlabHook = {
+installTestHook({
   stats: () => ({
     characters: state.characters.length,
     fallen: state.characters.filter((c) => c.fallen).length,
@@ -215,42 +128,14 @@ const hook: GaitlabHook = {
     terrain: state.terrain,
     drawnTerrain: stage?.terrain?.kind ?? null,
   }),
-  characters: () => state.characters.map((c) => ({ ...c, position: [...c.position] as Vec3, goal: { ...c.goal } })),
-  getGait: async (id) => {
-    if (!gaits) throw new Error('this build has no parameter schema');
-    return gaits.gaitOf(id);
-  },
-  shareUrl: async (id) => {
-    if (!gaits) throw new Error('this build has no parameter schema');
-    return gaits.shareUrl(id);
-  },
-  presetGait: async (type) => {
-    if (!gaits) throw new Error('this build has no parameter schema');
-    return gaits.presetOf(type);
-  },
+  characters: () => state.characters,
+  editors: () => gaits,
+  optimizer: () => optimizer,
+  optimizerMissing,
+  send,
+  control: (command) => client?.send(command),
+  select,
   throwBox: (target) => pointer?.throwAt(new THREE.Vector3(...target)),
-  setGoal: (id, goal) => send({ type: 'setGoal', id, speed: goal.speed, turn: goal.turn }),
-  select: (id) => select(id),
-  step: (count) => client?.send({ type: 'step', count }),
-  pause: () => client?.send({ type: 'pause' }),
-  resume: () => client?.send({ type: 'resume' }),
-  optimize: (form) => {
-    if (!optimizer) return Promise.reject(new Error(optimizerMissing()));
-    return optimizer.start(form);
-  },
-  optimizeStatus: () => {
-    if (!optimizer) throw new Error(optimizerMissing());
-    return optimizer.status();
-  },
-  stopOptimize: () => optimizer?.stop(),
-  applyOptimizeResult: async (target) => {
-    if (!optimizer) throw new Error(optimizerMissing());
-    return optimizer.applyResult(target);
-  },
-  optimizeShareUrl: async () => {
-    if (!optimizer) throw new Error(optimizerMissing());
-    return optimizer.shareUrl();
-  },
   learner: () => learnerId,
   screenPosition: (id) => {
     const index = crowd.firstBodyOf(id);
@@ -265,8 +150,7 @@ const hook: GaitlabHook = {
   },
   groundHeight: (x, z) => (stage?.terrain ? groundHeight(stage.terrain, x, z) : null),
   view: (from, to) => stage?.view(new THREE.Vector3(...from), new THREE.Vector3(...to)),
-};
-window.gaitlab = Object.freeze(hook);
+});
 
 /** Why window.gaitlab's optimize functions cannot work (the panel is made with the first scene). */
 function optimizerMissing(): string {
@@ -339,6 +223,8 @@ if (!window.crossOriginIsolated) {
     characters: 24,
   });
   let framed = false;
+  // Gaits in and out of the page (links, files), judged by the module in the sim worker.
+  const transfer = new GaitTransfer((json) => client!.normalize(json));
   client = new SimClient(options, {
     onScene: (reader, info) => {
       crowd.attach(reader);
@@ -348,8 +234,8 @@ if (!window.crossOriginIsolated) {
       framed = false;
       select(null);
       console.info(`gaitlab ${info.version}: scene ${info.generation}, ${reader.capacity} body slots, ${info.threads} threads`);
-      if (!gaits) gaits = GaitSession.create(info.schema, client!, panel.gaitFolder, overlay);
-      if (!optimizer && gaits && info.optimizerSchema) optimizer = createOptimizePanel(info.schema!, info.optimizerSchema);
+      if (!gaits) gaits = GaitEditors.create(info.schema, client!, transfer, panel.gaitFolder, overlay);
+      if (!optimizer && gaits && info.optimizerSchema) optimizer = createOptimizePanel(info.optimizerSchema);
     },
     onRelease: () => crowd.detach(),
     onStats: (stats) => {
@@ -428,12 +314,12 @@ if (!window.crossOriginIsolated) {
   };
 
   /** The optimize panel, once the module has said what the optimiser accepts. */
-  function createOptimizePanel(schemaJson: string, optimizerJson: string): OptimizePanel | null {
+  function createOptimizePanel(optimizerJson: string): OptimizePanel | null {
     try {
       return new OptimizePanel(
         {
           wasmUrl: options.wasmUrl,
-          paramSchema: JSON.parse(schemaJson),
+          transfer,
           optimizerSchema: JSON.parse(optimizerJson) as OptimizerSchema,
           // One thread fewer than the cores (at least one), so the search does not take the
           // core the crowd's real-time loop and the renderer need; the panel lets one choose

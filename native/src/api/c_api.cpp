@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "api/cli_bench.h"
 #include "api/handles.h"
@@ -47,11 +48,16 @@ bool isFinite(const double (&v)[3]) { return isFinite(v[0]) && isFinite(v[1]) &&
 std::string str(int v) { return std::to_string(v); }
 std::string str(double v) { return nlohmann::json(v).dump(); }
 
+// The kinds are numbered once (gait::Character); the ABI's numbers and the simulation's say the same.
+static_assert(GL_KIND_BIPED == static_cast<int>(gaitlab::gait::Character::Biped) &&
+              GL_KIND_QUADRUPED == static_cast<int>(gaitlab::gait::Character::Quadruped));
+static_assert(GL_KIND_BIPED == static_cast<int>(Kind::Biped) && GL_KIND_QUADRUPED == static_cast<int>(Kind::Quadruped) &&
+              GL_KIND_BOX == static_cast<int>(Kind::Box));
+
 bool characterKind(int kind, gaitlab::gait::Character* c) {
-  if (kind == GL_KIND_BIPED) *c = gaitlab::gait::Character::Biped;
-  else if (kind == GL_KIND_QUADRUPED) *c = gaitlab::gait::Character::Quadruped;
-  else return false;
-  return true;
+  const auto character = gaitlab::gait::characterFromKind(kind);
+  if (character) *c = *character;
+  return character.has_value();
 }
 std::string notACharacter(int kind) {
   return "kind: " + str(kind) + " is not GL_KIND_BIPED or GL_KIND_QUADRUPED";
@@ -60,6 +66,25 @@ std::string noCharacter(int id) { return "id: no character has id " + str(id); }
 
 bool benchLegs(int legs) { return legs == GL_LEGS_MIXED || legs == GL_LEGS_BIPED || legs == GL_LEGS_QUADRUPED; }
 std::string notLegs(int legs) { return "legs: " + str(legs) + " is not 0 (mixed), 2 or 4"; }
+
+// The characters a parameter call addresses: the one with id `characterId`, or with -1 every
+// character of `c`. Returns GL_OK or the refusal.
+int targetsOf(const Simulation& simulation, int characterId, gaitlab::gait::Character c, std::vector<int>* targets) {
+  using namespace gaitlab::gait;
+  if (characterId < 0) {
+    for (int i = 0; i < simulation.characterCount(); ++i) {
+      if (characterOf(simulation.character(i).morphology()) == c) targets->push_back(i);
+    }
+    if (targets->empty()) return refuse(GL_ERR_NO_CHARACTER, std::string("id: -1, and no ") + characterName(c) + " is in the simulation");
+    return GL_OK;
+  }
+  const int i = simulation.characterIndex(characterId);
+  if (i < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(characterId));
+  if (characterOf(simulation.character(i).morphology()) != c)
+    return refuse(GL_ERR_KIND, "kind: character " + str(characterId) + " is not a " + characterName(c));
+  targets->push_back(i);
+  return GL_OK;
+}
 
 }  // namespace
 
@@ -154,22 +179,38 @@ int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
   if (!characterKind(kind, &c)) return refuse(GL_ERR_KIND, notACharacter(kind));
   Simulation& simulation = *sim(s);
   std::vector<int> targets;
-  if (characterId < 0) {
-    for (int i = 0; i < simulation.characterCount(); ++i) {
-      if (characterOf(simulation.character(i).morphology()) == c) targets.push_back(i);
-    }
-    if (targets.empty()) return refuse(GL_ERR_NO_CHARACTER, std::string("id: -1, and no ") + characterName(c) + " is in the simulation");
-  } else {
-    const int i = simulation.characterIndex(characterId);
-    if (i < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(characterId));
-    if (characterOf(simulation.character(i).morphology()) != c)
-      return refuse(GL_ERR_KIND, "kind: character " + str(characterId) + " is not a " + characterName(c));
-    targets.push_back(i);
-  }
+  if (const int code = targetsOf(simulation, characterId, c, &targets)) return code;
   GaitFile file;
   if (const auto error = parseGaitFile(text ? text : "", c, &file))
     return refuse(GL_ERR_INVALID_PARAMS, error->describe());
   for (int i : targets) simulation.controller(i).setParams(file.params);
+  return GL_OK;
+}
+
+const char* gl_gait_normalize(const char* text) {
+  thread_local std::string normalized;
+  if (const auto error = gaitlab::gait::normalizeGaitFile(text ? text : "", &normalized))
+    return refuse<const char*>(nullptr, error->describe());
+  return normalized.c_str();
+}
+
+int gl_sim_patch_params(void* s, int characterId, int kind, const char* patch) {
+  using namespace gaitlab::gait;
+  Character c;
+  if (!characterKind(kind, &c)) return refuse(GL_ERR_KIND, notACharacter(kind));
+  Simulation& simulation = *sim(s);
+  std::vector<int> targets;
+  if (const int code = targetsOf(simulation, characterId, c, &targets)) return code;
+  // The values are checked once, against the schema, before any character changes: the patch
+  // is applied to a scratch copy first, then to each character's own parameters.
+  GaitParams scratch = defaultParams(c);
+  const std::string text = patch ? patch : "";
+  if (const auto error = applyParamsPatch(c, text, &scratch)) return refuse(GL_ERR_INVALID_PARAMS, error->describe());
+  for (int i : targets) {
+    GaitParams params = simulation.controller(i).params();
+    applyParamsPatch(c, text, &params);
+    simulation.controller(i).setParams(params);
+  }
   return GL_OK;
 }
 
@@ -294,6 +335,7 @@ const float* gl_sim_terrain_heights(void* s) {
 double gl_sim_ground_height(void* s, double x, double z) {
   if (!isFinite(x) || !isFinite(z)) return refuse(kNaN, "point: (" + str(x) + ", " + str(z) + ") is not finite");
   return sim(s)->groundHeight(x, z);
+}
 }
 
 }  // extern "C"

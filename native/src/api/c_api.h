@@ -139,12 +139,21 @@ GL_EXPORT const void* gl_sim_render_buffer(void* sim);
 
 // ---- Gait parameters: schema, presets, gait files (native/src/gait/schema.h, params_io.h) ----
 //
-// Gait files are JSON: {"format":"gaitlab-gait","version":1,"character":"biped"|"quadruped",
-// "params":{"<name>": number | [4 numbers], ...},"meta":{...}} (public/presets/*.json).
+// Gait files are JSON: {"format":"gaitlab-gait","version":2,"character":"biped"|"quadruped",
+// "params":{"<name>": number | [4 numbers], ...},"meta":{...}} (public/presets/*.json). The
+// module is the only judge of them: the page validates and migrates nothing itself.
 
-// The parameter schema: {"version":1,"characters":{"biped":[...],"quadruped":[...]}}, an entry
-// per parameter {"name","group","min","max","default","unit","description","knots"}. Static.
+// The parameter schema: {"version":2,"characters":{"biped":[...],"quadruped":[...]},
+// "morphologies":{"biped":{"kind","legFrames","legs"},...}}, an entry per parameter
+// {"name","group","min","max","default","unit","description","knots","field"} plus its
+// "legFrame" or "leg" ({"index","name"}) when it belongs to one (gait/schema.h). Static.
 GL_EXPORT const char* gl_schema_json(void);
+
+// Any gait file (any schema version) validated and normalised: the current version, every
+// parameter in schema order, canonical numbers, on one line, "meta" kept. NULL if it is refused
+// (gl_last_error() gives "FIELD: WHAT"). Valid until the next gl_gait_normalize on the same
+// thread.
+GL_EXPORT const char* gl_gait_normalize(const char* json);
 
 // The shipped preset of a kind, as a gait file. Static; NULL for a kind that is not a character.
 GL_EXPORT const char* gl_preset_json(int kind);
@@ -154,6 +163,13 @@ GL_EXPORT const char* gl_preset_json(int kind);
 // changes unless the whole file is valid. GL_OK; GL_ERR_KIND, GL_ERR_NO_CHARACTER, or
 // GL_ERR_INVALID_PARAMS ("FIELD: WHAT" for a refused file).
 GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char* json);
+
+// An edit: `patch` is a JSON object {"<name>": number | [4 numbers], ...} of some parameters and
+// their new values, given to the character with id `characterId`, or with characterId = -1 to
+// every character of `kind` (each keeps its other parameters). Every value is checked against
+// the schema first, and nothing changes unless all are valid. Returns GL_OK or a negative error
+// code (GL_ERR_INVALID_PARAMS with gl_last_error() "NAME: WHAT" for a refused value).
+GL_EXPORT int gl_sim_patch_params(void* sim, int characterId, int kind, const char* patch);
 
 // The gait parameters a character is using, as a gait file. The simulation's string; NULL if no
 // character has that id.

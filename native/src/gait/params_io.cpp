@@ -55,8 +55,34 @@ std::optional<std::string> checkNumber(const json& v, const ParamSpec& s, double
   return std::nullopt;
 }
 
+// All knots of one parameter, checked: a number for a scalar, an array of `knots` numbers for a
+// motion graph. A knot out of bounds is named with its index ("legFrame.pitch[2]").
+std::optional<ParamsError> readValue(const json& v, const ParamSpec& s, double* values) {
+  if (s.knots == 1) {
+    if (auto e = checkNumber(v, s, &values[0])) return ParamsError{s.name, *e};
+    return std::nullopt;
+  }
+  if (!v.is_array() || static_cast<int>(v.size()) != s.knots)
+    return ParamsError{s.name, "expected an array of " + std::to_string(s.knots) +
+                                   " numbers (motion graph knots), got " + typeName(v)};
+  for (int k = 0; k < s.knots; ++k) {
+    if (auto e = checkNumber(v[k], s, &values[k])) return ParamsError{s.name + "[" + std::to_string(k) + "]", *e};
+  }
+  return std::nullopt;
+}
+
+// Parses JSON text, or says where it stops being JSON.
+std::optional<ParamsError> parseJson(const std::string& text, json* out) {
+  *out = json::parse(text, nullptr, false);
+  if (!out->is_discarded()) return std::nullopt;
+  SyntaxCheck check;
+  json::sax_parse(text, &check);
+  return ParamsError{"", "not valid JSON: " + (check.error.empty() ? "parse error" : check.error)};
+}
+
 // Brings the parameters of a file made against schema `version` up to kSchemaVersion, one
-// version at a time; the same steps as the web page's MIGRATIONS (web/src/share/gait-file.ts).
+// version at a time. The only migrations there are: the web page and the CLI both read gait
+// files through parseGaitFile.
 void migrateParams(int version, json* params) {
   if (version < 2) {
     // 2: the quadruped's whole-body stance replaced the per-leg-frame support gain, and the swing
@@ -77,12 +103,8 @@ void migrateParams(int version, json* params) {
 
 std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<Character> expected,
                                          GaitFile* out) {
-  const json doc = json::parse(text, nullptr, false);
-  if (doc.is_discarded()) {
-    SyntaxCheck check;
-    json::sax_parse(text, &check);
-    return ParamsError{"", "not valid JSON: " + (check.error.empty() ? "parse error" : check.error)};
-  }
+  json doc;
+  if (auto error = parseJson(text, &doc)) return error;
   if (!doc.is_object()) return ParamsError{"", "expected a JSON object, got " + typeName(doc)};
   static const std::set<std::string> kTopLevel = {"format", "version", "character", "params", "meta"};
   for (const auto& item : doc.items()) {
@@ -101,7 +123,11 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   const json& cj = doc["character"];
   const std::optional<Character> character =
       cj.is_string() ? characterFromName(cj.get<std::string>()) : std::nullopt;
-  if (!character) return ParamsError{"character", "expected \"biped\" or \"quadruped\", got " + cj.dump()};
+  if (!character) {
+    std::string names;
+    for (Character c : kCharacters) names += std::string(names.empty() ? "" : " or ") + "\"" + characterName(c) + "\"";
+    return ParamsError{"character", "expected " + names + ", got " + cj.dump()};
+  }
   if (expected && *expected != *character)
     return ParamsError{"character", std::string("the file is for a ") + characterName(*character) +
                                         ", not a " + characterName(*expected)};
@@ -126,20 +152,7 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
       error = ParamsError{f.spec.name, "missing"};
       return;
     }
-    const json& v = *it;
-    if (f.spec.knots == 1) {
-      if (auto e = checkNumber(v, f.spec, &f.values[0])) error = ParamsError{f.spec.name, *e};
-      return;
-    }
-    if (!v.is_array() || static_cast<int>(v.size()) != f.spec.knots) {
-      error = ParamsError{f.spec.name, "expected an array of " + std::to_string(f.spec.knots) +
-                                           " numbers (motion graph knots), got " + typeName(v)};
-      return;
-    }
-    for (int k = 0; k < f.spec.knots && !error; ++k) {
-      if (auto e = checkNumber(v[k], f.spec, &f.values[k]))
-        error = ParamsError{f.spec.name + "[" + std::to_string(k) + "]", *e};
-    }
+    error = readValue(*it, f.spec, f.values);
   });
   if (error) return error;
   for (const auto& item : pj.items()) {
@@ -148,6 +161,35 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   }
   if (doc.contains("meta")) file.meta = doc["meta"];
   *out = std::move(file);
+  return std::nullopt;
+}
+
+std::optional<ParamsError> normalizeGaitFile(const std::string& text, std::string* out) {
+  GaitFile file;
+  if (auto error = parseGaitFile(text, std::nullopt, &file)) return error;
+  *out = gaitFileJson(file.character, file.params, file.meta, -1);
+  return std::nullopt;
+}
+
+std::optional<ParamsError> applyParamsPatch(Character c, const std::string& text, GaitParams* params) {
+  json patch;
+  if (auto error = parseJson(text, &patch)) return error;
+  if (!patch.is_object())
+    return ParamsError{"", "expected a JSON object of parameter values, got " + typeName(patch)};
+  // Every value is read into a copy first: a refused patch changes nothing.
+  GaitParams copy = *params;
+  std::optional<ParamsError> error;
+  for (const auto& item : patch.items()) {
+    if (!findParam(c, item.key()))
+      return ParamsError{item.key(), std::string("unknown parameter for a ") + characterName(c)};
+  }
+  forEachParam(c, copy, [&](const ParamField& f) {
+    if (error) return;
+    const auto it = patch.find(f.spec.name);
+    if (it != patch.end()) error = readValue(*it, f.spec, f.values);
+  });
+  if (error) return error;
+  *params = copy;
   return std::nullopt;
 }
 

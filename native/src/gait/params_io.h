@@ -1,13 +1,15 @@
 // Gait files: a character's GaitParams as JSON, the one format used by the CLI (`--params`),
 // the web page (export, import, share links), the optimiser's output and the shipped presets:
 //
-//   {"format": "gaitlab-gait", "version": 1, "character": "biped" | "quadruped",
+//   {"format": "gaitlab-gait", "version": 2, "character": "biped" | "quadruped",
 //    "params": {"<schema name>": number | [4 numbers], ...},
 //    "meta": {...optional: source, command, seed, objective, date, ...}}
 //
 // Every schema field must be present, and nothing else; values finite and within the schema's
 // bounds. A file that breaks any rule is refused with the field named, and the target is left
-// untouched (the file is parsed into a copy, committed only when all of it is valid).
+// untouched (the file is parsed into a copy, committed only when all of it is valid). A file of
+// an older schema version is migrated first; this is the only place that knows how (the web page
+// sends what it reads to normalizeGaitFile through gl_gait_normalize).
 #pragma once
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -46,6 +48,16 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
 // The same, reading a file from disk (an unreadable file is an error with an empty field).
 std::optional<ParamsError> loadGaitFile(const std::string& path, std::optional<Character> expected,
                                         GaitFile* out);
+
+// Any gait file (any schema version) as the current version in canonical form: every parameter,
+// in schema order, on one line, "meta" kept. On success fills *out; on failure returns the error.
+std::optional<ParamsError> normalizeGaitFile(const std::string& text, std::string* out);
+
+// A patch: {"<schema name>": number | [knots], ...}, some parameters of a character and their new
+// values, each checked as in a gait file (a known name, finite, within bounds, the right number
+// of knots). All or nothing: on success sets them in *params; on failure returns the first
+// problem, naming the parameter, and leaves *params as it was.
+std::optional<ParamsError> applyParamsPatch(Character c, const std::string& patch, GaitParams* params);
 
 // Serialises params in schema order; doubles print with enough digits to read back bit-exactly.
 std::string gaitFileJson(Character c, const GaitParams& params,

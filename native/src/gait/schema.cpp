@@ -36,18 +36,6 @@ struct Table {
   int dimension = 0;
 };
 
-// Leg-frame and leg names per character, in morphology order (body/morphology.cpp: the
-// quadruped's legs are front.left, front.right, back.left, back.right; legFrames = {front, back}).
-const std::vector<std::string>& legFrameNames(Character c) {
-  static const std::vector<std::string> biped = {"legFrame"}, quadruped = {"front", "back"};
-  return c == Character::Biped ? biped : quadruped;
-}
-const std::vector<std::string>& legNames(Character c) {
-  static const std::vector<std::string> biped = {"left", "right"},
-                                        quadruped = {"frontLeft", "frontRight", "backLeft", "backRight"};
-  return c == Character::Biped ? biped : quadruped;
-}
-
 // The schema itself. Bounds are wide enough for the optimiser to explore (its steps are a tenth
 // of the range, thesis §3.3) and physically sensible; gains whose sensible magnitude differs
 // between the 70 kg biped and the lighter-legged quadruped get bounds per character so that a
@@ -56,10 +44,15 @@ Table build(Character c) {
   Table t;
   GaitParams proto;
   const bool biped = c == Character::Biped;
+  // The leg frame or leg the entries being added belong to (set by the loops below).
+  int legFrame = -1, leg = -1;
+  std::string owner;  // its name and a dot, "" for controller-wide parameters
   const auto add = [&](std::string name, const char* group, Bounds b, const char* unit,
                        const char* description, double* values, int knots) {
     const auto offset = reinterpret_cast<const char*>(values) - reinterpret_cast<const char*>(&proto);
-    t.entries.push_back({{std::move(name), group, b.min, b.max, unit, description, knots}, offset});
+    std::string field = name.substr(owner.size());
+    t.entries.push_back(
+        {{std::move(name), group, b.min, b.max, unit, description, knots, std::move(field), legFrame, leg}, offset});
     t.dimension += knots;
   };
   const auto scalar = [&](std::string name, const char* group, Bounds b, const char* unit,
@@ -124,6 +117,8 @@ Table build(Character c) {
   for (size_t i = 0; i < legFrameNames(c).size(); ++i) {
     LegFrameParams& f = proto.legFrames[i];
     const std::string n = legFrameNames(c)[i] + ".";
+    legFrame = static_cast<int>(i);
+    owner = n;
     graph(n + "pitch", kLegFrame, {-0.5, 0.5}, "rad",
           "desired leg-frame pitch over the gait phase, heading frame (+ = nose down) (§3.1.3)", f.pitch);
     graph(n + "roll", kLegFrame, {-0.3, 0.3}, "rad", "desired leg-frame roll over the gait phase (§3.1.3)",
@@ -181,6 +176,9 @@ Table build(Character c) {
   for (size_t i = 0; i < legNames(c).size(); ++i) {
     LegParams& l = proto.legs[i];
     const std::string n = legNames(c)[i] + ".";
+    legFrame = -1;
+    leg = static_cast<int>(i);
+    owner = n;
     scalar(n + "stepTrigger", kGaitDiagram, {0, 1}, "1",
            "gait phase at which the leg lifts off (§3.1.1)", l.stepTrigger);
     scalar(n + "dutyFactor", kGaitDiagram, {0.2, 0.9}, "1", "share of the gait cycle spent in stance (§3.1.1)",
@@ -205,14 +203,46 @@ double* at(GaitParams& p, std::ptrdiff_t offset) {
   return reinterpret_cast<double*>(reinterpret_cast<char*>(&p) + offset);
 }
 
+// The morphology of a character, built once (leg frames and sides of the legs for the schema).
+const body::Morphology& morphologyOf(Character c) {
+  static const body::Morphology biped = body::makeBiped(), quadruped = body::makeQuadruped();
+  return c == Character::Biped ? biped : quadruped;
+}
+
 }  // namespace
+
+const std::vector<std::string>& legFrameNames(Character c) {
+  static const std::vector<std::string> biped = {"legFrame"}, quadruped = {"front", "back"};
+  return c == Character::Biped ? biped : quadruped;
+}
+
+const std::vector<std::string>& legNames(Character c) {
+  static const std::vector<std::string> biped = {"left", "right"},
+                                        quadruped = {"frontLeft", "frontRight", "backLeft", "backRight"};
+  return c == Character::Biped ? biped : quadruped;
+}
 
 const char* characterName(Character c) { return c == Character::Biped ? "biped" : "quadruped"; }
 
 std::optional<Character> characterFromName(const std::string& name) {
-  if (name == "biped") return Character::Biped;
-  if (name == "quadruped") return Character::Quadruped;
+  for (Character c : kCharacters) {
+    if (name == characterName(c)) return c;
+  }
   return std::nullopt;
+}
+
+std::optional<Character> characterFromKind(int kind) {
+  for (Character c : kCharacters) {
+    if (kind == static_cast<int>(c)) return c;
+  }
+  return std::nullopt;
+}
+
+const ParamSpec* findParam(Character c, const std::string& name) {
+  for (const ParamSpec& s : paramSpecs(c)) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
 }
 
 Character characterOf(const body::Morphology& m) {
@@ -253,8 +283,8 @@ void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi) {
 
 std::string schemaJson(std::optional<Character> only) {
   using ordered = nlohmann::ordered_json;
-  ordered characters = ordered::object();
-  for (Character c : {Character::Biped, Character::Quadruped}) {
+  ordered characters = ordered::object(), morphologies = ordered::object();
+  for (Character c : kCharacters) {
     if (only && *only != c) continue;
     GaitParams defaults = defaultParams(c);
     ordered entries = ordered::array();
@@ -262,13 +292,34 @@ std::string schemaJson(std::optional<Character> only) {
       const ParamSpec& s = f.spec;
       ordered d = s.knots == 1 ? ordered(f.values[0])
                                : ordered(std::vector<double>(f.values, f.values + s.knots));
-      entries.push_back({{"name", s.name}, {"group", s.group}, {"min", s.min}, {"max", s.max},
-                         {"default", d}, {"unit", s.unit}, {"description", s.description},
-                         {"knots", s.knots}});
+      ordered e = {{"name", s.name}, {"group", s.group}, {"min", s.min}, {"max", s.max},
+                   {"default", d}, {"unit", s.unit}, {"description", s.description},
+                   {"knots", s.knots}, {"field", s.field}};
+      if (s.legFrame >= 0) e["legFrame"] = {{"index", s.legFrame}, {"name", legFrameNames(c)[s.legFrame]}};
+      if (s.leg >= 0) e["leg"] = {{"index", s.leg}, {"name", legNames(c)[s.leg]}};
+      entries.push_back(std::move(e));
     });
     characters[characterName(c)] = entries;
+
+    // The body the parameters belong to: which leg frame each leg hangs from, and its side (the
+    // sign of its hip's x in the rest pose: the character faces +z, so +x is its left).
+    const body::Morphology& m = morphologyOf(c);
+    ordered frames = ordered::array(), legs = ordered::array();
+    for (size_t i = 0; i < legFrameNames(c).size(); ++i)
+      frames.push_back({{"index", i}, {"name", legFrameNames(c)[i]}});
+    for (size_t i = 0; i < legNames(c).size(); ++i) {
+      const body::Leg& leg = m.legs[i];
+      int frame = 0;
+      for (size_t k = 0; k < m.legFrames.size(); ++k) {
+        if (m.legFrames[k] == leg.legFrame) frame = static_cast<int>(k);
+      }
+      const bool left = m.segments[leg.upper].center.x() > 0;
+      legs.push_back({{"index", i}, {"name", legNames(c)[i]}, {"legFrame", frame},
+                      {"side", left ? "left" : "right"}});
+    }
+    morphologies[characterName(c)] = {{"kind", static_cast<int>(c)}, {"legFrames", frames}, {"legs", legs}};
   }
-  return ordered{{"version", kSchemaVersion}, {"characters", characters}}.dump();
+  return ordered{{"version", kSchemaVersion}, {"characters", characters}, {"morphologies", morphologies}}.dump();
 }
 
 }  // namespace gaitlab::gait

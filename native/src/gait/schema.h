@@ -22,14 +22,29 @@
 
 namespace gaitlab::gait {
 
+// The kinds of character: the one list of them. Their numbers are the C ABI's GL_KIND_BIPED and
+// GL_KIND_QUADRUPED (native/src/api/c_api.h checks it) and the simulation's sim::Kind; the page
+// reads them from the exported schema ("morphologies": {name: {"kind": n, ...}}).
 enum class Character { Biped = 0, Quadruped = 1 };
+constexpr Character kCharacters[] = {Character::Biped, Character::Quadruped};
 
 const char* characterName(Character c);                            // "biped", "quadruped"
 std::optional<Character> characterFromName(const std::string& name);
+// The character of a kind number (GL_KIND_*), or nullopt for a number that is not a character.
+std::optional<Character> characterFromKind(int kind);
 Character characterOf(const body::Morphology& morphology);  // by its number of leg frames
 
+// The names parameters use for a character's leg frames and legs, in morphology order
+// (body/morphology.cpp): biped {legFrame} and {left, right}; quadruped {front, back} and
+// {frontLeft, frontRight, backLeft, backRight}.
+const std::vector<std::string>& legFrameNames(Character c);
+const std::vector<std::string>& legNames(Character c);
+
 // One schema entry: what a parameter is. `knots` is 1 for a scalar and MotionGraph::kKnots (4)
-// for a motion graph, whose knots all share the bounds.
+// for a motion graph, whose knots all share the bounds. A per-leg-frame parameter names its leg
+// frame and a per-leg one its leg (indices in morphology order, -1 otherwise), so that nothing
+// downstream has to take names apart to find them; `field` is the name within that leg or leg
+// frame ("dutyFactor"), or the whole name.
 struct ParamSpec {
   std::string name;
   const char* group;
@@ -37,7 +52,13 @@ struct ParamSpec {
   const char* unit;  // SI; "" for a plain number, "1" for a fraction
   const char* description;
   int knots;
+  std::string field;
+  int legFrame = -1;
+  int leg = -1;
 };
+
+// Looks a parameter up by name; nullptr if the character has no such parameter.
+const ParamSpec* findParam(Character c, const std::string& name);
 
 // A parameter of one particular GaitParams: its spec and where its knots live.
 struct ParamField {
@@ -63,9 +84,12 @@ void fromVector(Character c, const std::vector<double>& values, GaitParams* para
 // Per-dimension bounds, in the same order.
 void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi);
 
-// The schema as JSON: {"version":1,"characters":{"biped":[entries],"quadruped":[entries]}},
-// entry = {"name","group","min","max","default","unit","description","knots"}; `default` is the
-// shipped preset's value (a number, or an array of knots). With `only`, one character.
+// The schema as JSON: {"version":2,"characters":{"biped":[entries],"quadruped":[entries]},
+// "morphologies":{"biped":{"kind","legFrames":[{"index","name"}],"legs":[{"index","name",
+// "legFrame","side"}]},...}}, entry = {"name","group","min","max","default","unit",
+// "description","knots","field"} and, per leg frame or leg, "legFrame" or "leg": {"index","name"};
+// `default` is the shipped preset's value (a number, or an array of knots). With `only`, one
+// character.
 std::string schemaJson(std::optional<Character> only = std::nullopt);
 
 constexpr int kSchemaVersion = 2;

@@ -192,3 +192,73 @@ TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
     EXPECT_EQ(target.character, before.character);
   }
 }
+
+// normalizeGaitFile: any version in, the current version out, canonical and complete; a refusal
+// is parseGaitFile's, field named.
+TEST(GaitFile, NormalizeMigratesAndWritesTheCanonicalForm) {
+  json old = json::parse(presetText(Character::Quadruped));
+  old["version"] = 1;
+  old["params"].erase("gains.swingTargetRate");
+  old["params"]["front.supportGain"] = 800;
+  old["meta"] = {{"author", "x"}};
+  std::string out;
+  const auto error = normalizeGaitFile(old.dump(), &out);
+  ASSERT_FALSE(error) << error->describe();
+  const json doc = json::parse(out);
+  EXPECT_EQ(doc["version"], kGaitFormatVersion);
+  EXPECT_EQ(doc["params"]["gains.swingTargetRate"], 0.0);
+  EXPECT_FALSE(doc["params"].contains("front.supportGain"));
+  EXPECT_EQ(doc["meta"]["author"], "x");
+  EXPECT_EQ(doc["params"].size(), paramSpecs(Character::Quadruped).size());
+  EXPECT_EQ(out.find('\n'), std::string::npos);  // one line
+  // Normalising the normal form changes nothing.
+  std::string again;
+  ASSERT_FALSE(normalizeGaitFile(out, &again));
+  EXPECT_EQ(again, out);
+
+  json bad = json::parse(presetText(Character::Biped));
+  bad["params"]["period"] = 7.5;
+  std::string untouched = "kept";
+  const auto refused = normalizeGaitFile(bad.dump(), &untouched);
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->describe(), "period: 7.5 is outside [0.3, 3.0]");
+  EXPECT_EQ(untouched, "kept");
+}
+
+// applyParamsPatch: the named values change and nothing else; any bad value refuses the whole
+// patch, naming the parameter, and leaves the parameters as they were.
+TEST(GaitFile, PatchChangesOnlyWhatItNamesAllOrNothing) {
+  const GaitParams preset = defaultParams(Character::Biped);
+  GaitParams p = preset;
+  ASSERT_FALSE(applyParamsPatch(Character::Biped, R"({"period": 1.25, "legFrame.pitch": [0.1, 0.2, -0.1, 0]})", &p));
+  EXPECT_EQ(p.period, 1.25);
+  EXPECT_EQ(p.legFrames[0].pitch.knots[1], 0.2);
+  GaitParams expected = preset;
+  expected.period = 1.25;
+  const double pitch[4] = {0.1, 0.2, -0.1, 0};
+  std::memcpy(expected.legFrames[0].pitch.knots, pitch, sizeof(pitch));
+  EXPECT_TRUE(sameBits(p, expected));
+
+  const std::pair<const char*, const char*> refusals[] = {
+      {R"({"period": 1.0, "left.dutyFactor": 2})", "left.dutyFactor: 2.0 is outside [0.2, 0.9]"},
+      {R"({"period": 1.0, "front.pitch": [0,0,0,0]})", "front.pitch: unknown parameter for a biped"},
+      {R"({"legFrame.pitch": [0, 0]})", "legFrame.pitch: expected an array of 4 numbers (motion graph knots), got an array of 2"},
+      {R"({"legFrame.stepHeight": [0, 0.1, -0.01, 0]})", "legFrame.stepHeight[2]: -0.01 is outside [0.0, 0.25]"},
+      {R"({"period": "1"})", "period: expected a number, got a string"},
+      // JSON has no infinity; nlohmann refuses a number beyond a double's range while parsing.
+      {R"({"period": 1e999})", "not valid JSON: [json.exception.out_of_range.406] number overflow parsing '1e999'"},
+      {R"([1, 2])", "expected a JSON object of parameter values, got an array of 2"},
+  };
+  for (const auto& [patch, message] : refusals) {
+    GaitParams q = p;
+    const auto error = applyParamsPatch(Character::Biped, patch, &q);
+    ASSERT_TRUE(error) << patch;
+    EXPECT_EQ(error->describe(), message) << patch;
+    EXPECT_TRUE(sameBits(q, p)) << patch << " changed the parameters";
+  }
+  GaitParams q = p;
+  const auto error = applyParamsPatch(Character::Biped, "{\"period\": ", &q);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->field, "");
+  EXPECT_NE(error->message.find("not valid JSON"), std::string::npos);
+}

@@ -192,3 +192,48 @@ TEST(Schema, JsonExportDescribesEveryParameterWithItsDefault) {
   EXPECT_FALSE(one["characters"].contains("biped"));
   EXPECT_TRUE(one["characters"].contains("quadruped"));
 }
+
+// The page finds a parameter's leg or leg frame, and the legs' leg frames and sides, in the
+// schema itself (it takes no names apart): every per-leg and per-leg-frame entry says which.
+TEST(Schema, EntriesNameTheirLegOrLegFrameAndTheMorphologyIsExported) {
+  const nlohmann::json doc = nlohmann::json::parse(schemaJson(), nullptr, false);
+  ASSERT_FALSE(doc.is_discarded());
+  for (Character c : kCharacters) {
+    const nlohmann::json& morphology = doc["morphologies"][characterName(c)];
+    EXPECT_EQ(morphology["kind"], static_cast<int>(c));
+    EXPECT_EQ(characterFromKind(static_cast<int>(c)), c);
+    ASSERT_EQ(morphology["legFrames"].size(), legFrameNames(c).size());
+    ASSERT_EQ(morphology["legs"].size(), legNames(c).size());
+    for (const nlohmann::json& e : doc["characters"][characterName(c)]) {
+      const std::string name = e["name"];
+      const ParamSpec* spec = findParam(c, name);
+      ASSERT_NE(spec, nullptr) << name;
+      if (e.contains("leg")) {
+        const int i = e["leg"]["index"];
+        EXPECT_EQ(spec->leg, i);
+        EXPECT_EQ(e["leg"]["name"], legNames(c)[i]);
+        EXPECT_EQ(name, legNames(c)[i] + "." + e["field"].get<std::string>());
+      } else if (e.contains("legFrame")) {
+        const int i = e["legFrame"]["index"];
+        EXPECT_EQ(spec->legFrame, i);
+        EXPECT_EQ(name, legFrameNames(c)[i] + "." + e["field"].get<std::string>());
+      } else {
+        EXPECT_EQ(spec->leg, -1);
+        EXPECT_EQ(spec->legFrame, -1);
+        EXPECT_EQ(e["field"], name);
+      }
+    }
+  }
+  EXPECT_FALSE(characterFromKind(2));  // a box is not a character
+  EXPECT_EQ(findParam(Character::Biped, "front.pitch"), nullptr);
+  // Every leg has its duty factor and step trigger; the quadruped's legs hang from both leg
+  // frames, front legs from the first, and each pair has a left and a right leg.
+  const nlohmann::json& legs = doc["morphologies"]["quadruped"]["legs"];
+  const std::vector<std::pair<int, std::string>> expected = {{0, "left"}, {0, "right"}, {1, "left"}, {1, "right"}};
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(legs[i]["legFrame"], expected[i].first) << i;
+    EXPECT_EQ(legs[i]["side"], expected[i].second) << i;
+  }
+  EXPECT_EQ(doc["morphologies"]["biped"]["legs"][0]["side"], "left");
+  EXPECT_EQ(doc["morphologies"]["biped"]["legs"][1]["side"], "right");
+}

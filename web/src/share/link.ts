@@ -4,17 +4,20 @@
 //   #gait=1.<chars>.<data>
 //
 //   1        the link format's version (LINK_VERSION); the gait inside carries the parameter
-//            schema's version, which parseGait() migrates if it is older
+//            schema's version, which the module migrates if it is older (gl_gait_normalize)
 //   <chars>  how many characters <data> has: a link cut short (a chat client wrapping it, a
 //            partial copy) is recognised as truncated rather than as some other gait
 //   <data>   base64url of: CRC-32 of the JSON (4 bytes, big-endian), then the gait file's JSON
 //            (without "meta") compressed with deflate-raw (CompressionStream)
 //
 // Decoding refuses, with a GaitError naming the problem: a truncated link, corrupt data (bad
-// characters, data that does not inflate, a checksum mismatch, JSON that is not a gait), a link
-// or payload that is too long, an unknown link or schema version, values out of bounds or not
-// finite. The page then shows the message and runs with the presets.
-import { GaitError, parseGait, type GaitFile, type Migration, type ParamSchema, MIGRATIONS } from './gait-file';
+// characters, data that does not inflate, a checksum mismatch, text that is not JSON), a link
+// or payload that is too long, an unknown link version. The gait inside is then the module's to
+// judge (an unknown schema version, a field missing, unknown, out of bounds or not finite): the
+// decoder hands its text to a normaliser (gl_gait_normalize through the sim worker) and passes
+// a refusal on as problem 'refused' with the module's "FIELD: WHAT". The page then shows the
+// message and runs with the presets.
+import { GaitError, type GaitFile, type GaitNormalizer } from './gait-file';
 
 export const LINK_VERSION = 1;
 export const HASH_KEY = 'gait';
@@ -119,14 +122,10 @@ export function hasGait(hash: string): boolean {
 }
 
 /**
- * The gait a URL hash carries, checked against the schema; throws a GaitError saying what is
- * wrong. Call only when hasGait(hash).
+ * The gait a URL hash carries, normalised by `normalize` (the module); throws a GaitError saying
+ * what is wrong. Call only when hasGait(hash).
  */
-export async function decodeGaitHash(
-  hash: string,
-  schema: ParamSchema,
-  migrations: Readonly<Record<number, Migration>> = MIGRATIONS,
-): Promise<GaitFile> {
+export async function decodeGaitHash(hash: string, normalize: GaitNormalizer): Promise<GaitFile> {
   const value = new URLSearchParams(hash.replace(/^#/, '')).get(HASH_KEY) ?? '';
   if (value.length > MAX_LINK_CHARS + 32) {
     throw new GaitError('too-long', `the link's gait is ${value.length} characters long; at most ${MAX_LINK_CHARS} are accepted`);
@@ -153,11 +152,16 @@ export async function decodeGaitHash(
   const expected = new DataView(bytes.buffer, bytes.byteOffset).getUint32(0);
   const text = await inflateRaw(bytes.subarray(4), MAX_JSON_BYTES);
   if (crc32(text) !== expected) throw new GaitError('corrupt', 'the link data is damaged: its checksum does not match');
-  let parsed: unknown;
+  let json: string;
   try {
-    parsed = JSON.parse(new TextDecoder('utf-8', { fatal: true }).decode(text));
+    json = new TextDecoder('utf-8', { fatal: true }).decode(text);
+    JSON.parse(json);
   } catch {
     throw new GaitError('corrupt', 'the link data is not a JSON gait');
   }
-  return parseGait(parsed, schema, migrations);
+  try {
+    return await normalize(json);
+  } catch (error) {
+    throw new GaitError('refused', error instanceof Error ? error.message : String(error));
+  }
 }

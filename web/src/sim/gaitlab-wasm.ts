@@ -11,6 +11,7 @@
 // the offsets of STRUCTS, which mirror c_api.h's static_asserts (tests/web/sim/gaitlab-wasm.test.ts
 // compares them), after the library's own gl_*_defaults filled them.
 import type { TerrainGrid, TerrainKind } from './terrain-grid';
+import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
 
 /** The Emscripten Module with every function of the C ABI. Pointers are byte offsets (numbers). */
 export interface GaitlabModule {
@@ -47,6 +48,8 @@ export interface GaitlabModule {
   _gl_preset_json(kind: number): number;
   _gl_sim_set_params(sim: number, id: number, kind: number, json: number): number;
   _gl_sim_get_params(sim: number, id: number): number;
+  _gl_sim_patch_params(sim: number, id: number, kind: number, patch: number): number;
+  _gl_gait_normalize(json: number): number;
   // Interaction.
   _gl_sim_set_goal(sim: number, id: number, speed: number, turnRate: number): number;
   _gl_throw_defaults(settings: number): void;
@@ -92,8 +95,11 @@ export const MAX_THREADS = 5;
 /** GL_ERR_* of c_api.h: what a refused int-returning call returns. */
 export const ERR = { argument: -1, kind: -2, noCharacter: -3, invalidParams: -4, full: -5 } as const;
 
-/** Kinds for gl_sim_spawn (GL_KIND_*). */
-export const Kind = { biped: 0, quadruped: 1, box: 2 } as const;
+/** Kinds for gl_sim_spawn (GL_KIND_*): the character types in their order (gait/character.ts), then the box. */
+export const Kind = {
+  ...(Object.fromEntries(CHARACTER_TYPES.map((t, i) => [t, i])) as Record<CharacterType, number>),
+  box: CHARACTER_TYPES.length,
+} as const;
 /** gl_sim_add_characters' kind for bipeds and quadrupeds in turn (GL_LAYOUT_ALTERNATING). */
 export const ALTERNATING = 3;
 
@@ -281,6 +287,14 @@ export function presetJson(module: GaitlabModule, kind: number): string {
   return checkString(module, 'gl_preset_json', module._gl_preset_json(kind));
 }
 
+/**
+ * A gait file's JSON validated and normalised by the module (gl_gait_normalize): the current
+ * schema version, every parameter, canonical values. Throws a GaitlabError with "FIELD: WHAT".
+ */
+export function normalizeGait(module: GaitlabModule, json: string): string {
+  return withString(module, json, (pointer) => checkString(module, 'gl_gait_normalize', module._gl_gait_normalize(pointer)));
+}
+
 /** The speed a character kind's preset is tuned for, m/s (gl_cruise_speed). */
 export function cruiseSpeed(module: GaitlabModule, kind: number): number {
   return checkNumber(module, 'gl_cruise_speed', module._gl_cruise_speed(kind));
@@ -421,6 +435,15 @@ export class Simulation {
   setParams(id: number, kind: number, json: string): void {
     withString(this.module, json, (pointer) =>
       this.check('gl_sim_set_params', this.module._gl_sim_set_params(this.sim, id, kind, pointer)));
+  }
+
+  /**
+   * Changes some parameters ({name: value} JSON) of `id`, or of every character of `kind` with
+   * id −1, all or nothing; a refused value throws a GaitlabError with "NAME: WHAT".
+   */
+  patchParams(id: number, kind: number, patch: string): void {
+    withString(this.module, patch, (pointer) =>
+      this.check('gl_sim_patch_params', this.module._gl_sim_patch_params(this.sim, id, kind, pointer)));
   }
 
   // ---- Terrain ----

@@ -6,6 +6,10 @@
 // that memory (see render-buffer.ts).
 import { MAX_THREADS } from './gaitlab-wasm';
 import { isTerrainKind, type TerrainGrid, type TerrainKind } from './terrain-grid';
+import type { CharacterType } from '../gait/character';
+import type { ParamPatch } from '../share/gait-file';
+
+export type { CharacterType } from '../gait/character';
 
 /** How the worker should set up the simulation. */
 export interface SimOptions {
@@ -24,7 +28,6 @@ export interface SimOptions {
 }
 
 export type Vec3 = [number, number, number];
-export type CharacterType = 'biped' | 'quadruped';
 
 /**
  * Commands that change the running scene. The worker queues them and applies them at the start
@@ -54,6 +57,12 @@ export type SceneCommand =
    * character of `character`'s type with id 'all'.
    */
   | { type: 'setParams'; id: number | 'all'; character: CharacterType; json: string }
+  /**
+   * An edit: some parameters' new values for character `id`, or for every character of
+   * `character`'s type with id 'all' (gl_sim_patch_params: each value checked against the
+   * schema, all or nothing). With `request`, answered by a `patched` event.
+   */
+  | { type: 'patchParams'; id: number | 'all'; character: CharacterType; patch: ParamPatch; request?: number }
   /**
    * The optimize panel's learner ("learning to walk", thesis Figure 3.6): a character of its
    * own, apart from the crowd, that walks a search's best gait so far. Each of these replaces
@@ -107,7 +116,12 @@ export type SimCommand =
   /** Asks for character `id`'s gait parameters; answered by a `params` event with the same request. */
   | { type: 'getParams'; request: number; id: number }
   /** Asks for a type's preset gait; answered by a `params` event. */
-  | { type: 'getPreset'; request: number; character: CharacterType };
+  | { type: 'getPreset'; request: number; character: CharacterType }
+  /**
+   * Asks the module to validate and normalise a gait file's JSON from outside (a link, a file):
+   * answered by a `params` event with the normalised JSON, or the module's "FIELD: WHAT".
+   */
+  | { type: 'normalize'; request: number; json: string };
 
 /** Statistics the worker reports a few times a second. */
 export interface SimStats {
@@ -147,8 +161,13 @@ export type SimEvent =
       /** The optimiser's objective settings (gl_opt_settings_json), or null if this build has none. */
       optimizerSchema: string | null;
     }
-  /** Answer to getParams / getPreset: the gait file's JSON, or why there is none. */
+  /** Answer to getParams / getPreset / normalize: the gait file's JSON, or why there is none. */
   | { type: 'params'; request: number; json: string | null; error: string | null }
+  /**
+   * Answer to a patchParams with a request: the patch the simulation accepted, or null and the
+   * refusal (the command and the parameter named).
+   */
+  | { type: 'patched'; request: number; accepted: ParamPatch | null; error: string | null }
   /**
    * The ground of scene `generation` changed (or the scene is new): its grid and samples, to draw
    * it exactly as the physics has it. Sent after `ready` and after every setTerrain.

@@ -1,6 +1,7 @@
 // Main-thread side of the sim worker: starts it, sends typed commands, and keeps the newest
 // statistics and render-buffer reader. It never steps anything itself (docs/design.md, data flow).
-import { errorMessage, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
+import { errorMessage, type CharacterType, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
+import type { ParamPatch } from '../share/gait-file';
 import { RenderBufferReader } from './render-buffer';
 import type { TerrainGrid } from './terrain-grid';
 
@@ -54,8 +55,23 @@ export class SimClient {
   }
 
   /** A type's preset gait (a gait file's JSON). */
-  getPreset(character: 'biped' | 'quadruped'): Promise<string> {
+  getPreset(character: CharacterType): Promise<string> {
     return this.request((request) => ({ type: 'getPreset', request, character }));
+  }
+
+  /** A gait file's JSON normalised by the module; rejects with the module's "FIELD: WHAT". */
+  normalize(json: string): Promise<string> {
+    return this.request((request) => ({ type: 'normalize', request, json }));
+  }
+
+  /**
+   * An edit of character `id`'s parameters (or of every character of the type): resolves when
+   * the simulation accepted it, rejects with its refusal (the command and the parameter named).
+   */
+  patchParams(id: number | 'all', character: CharacterType, patch: ParamPatch): Promise<ParamPatch> {
+    return this.request((request) => ({ type: 'scene', command: { type: 'patchParams', id, character, patch, request } })).then(
+      (accepted) => JSON.parse(accepted) as ParamPatch,
+    );
   }
 
   private request(make: (request: number) => SimCommand): Promise<string> {
@@ -108,6 +124,14 @@ export class SimClient {
         if (!pending) return;
         if (event.json !== null) pending.resolve(event.json);
         else pending.reject(new Error(event.error ?? 'no parameters'));
+        return;
+      }
+      case 'patched': {
+        const pending = this.requests.get(event.request);
+        this.requests.delete(event.request);
+        if (!pending) return;
+        if (event.accepted !== null) pending.resolve(JSON.stringify(event.accepted));
+        else pending.reject(new Error(event.error ?? 'the edit was refused'));
         return;
       }
       case 'terrain':

@@ -17,6 +17,7 @@ import {
   INFO,
   Kind,
   loadGaitlab,
+  normalizeGait,
   optimizerSettingsJson,
   presetJson,
   schemaJson,
@@ -24,7 +25,7 @@ import {
   type GaitlabModule,
 } from './gaitlab-wasm';
 import type { TerrainKind } from './terrain-grid';
-import { CHARACTER_TYPES } from '../share/gait-file';
+import { CHARACTER_TYPES, typeOfKind } from '../gait/character';
 import {
   errorMessage,
   type CharacterStatus,
@@ -305,6 +306,25 @@ class WorkerScene {
         }
         if (command.id === 'all') this.typeGaits[command.character] = command.json;
         return;
+      case 'patchParams': {
+        const who = command.id === 'all' ? `every ${command.character}` : `${command.character} #${command.id}`;
+        let error: string | null = null;
+        try {
+          sim.patchParams(command.id === 'all' ? -1 : command.id, Kind[command.character], JSON.stringify(command.patch));
+        } catch (e) {
+          if (!(e instanceof GaitlabError)) throw e;
+          error = `the edit of ${who} (patchParams) was refused: ${e.detail}`;
+        }
+        if (!error && command.id === 'all') {
+          // Characters added later walk with the type's gait as edited: the first of the type's,
+          // as the editors show it.
+          const first = this.characterStatus().find((c) => c.type === command.character);
+          if (first) this.typeGaits[command.character] = sim.getParams(first.id);
+        }
+        if (command.request !== undefined) post({ type: 'patched', request: command.request, accepted: error ? null : command.patch, error });
+        else if (error) post({ type: 'commandError', message: error });
+        return;
+      }
       case 'learner':
         this.startLearner(sim, command);
         return;
@@ -370,7 +390,7 @@ class WorkerScene {
     for (let o = 0; o < info.length; o += INFO.fields) {
       out.push({
         id: info[o + INFO.id],
-        type: info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped',
+        type: typeOfKind(info[o + INFO.kind]) ?? 'biped',
         position: [info[o + INFO.x], info[o + INFO.y], info[o + INFO.z]],
         heading: info[o + INFO.heading],
         speed: info[o + INFO.speed],
@@ -504,6 +524,11 @@ class WorkerScene {
     }
   }
 
+  /** A gait file as the module reads it: normalised, or refused naming the field. */
+  normalize(json: string): string {
+    return normalizeGait(this.module, json);
+  }
+
   /** A character's gait file, or a type's preset. */
   gaitJson(command: Extract<SimCommand, { type: 'getParams' | 'getPreset' }>): string {
     if (!this.sim) throw new Error('no simulation yet');
@@ -551,12 +576,18 @@ function handle(command: SimCommand): void {
     init(command.options).catch(fail);
     return;
   }
-  if (command.type === 'getParams' || command.type === 'getPreset') {
+  if (command.type === 'getParams' || command.type === 'getPreset' || command.type === 'normalize') {
     let json: string | null = null;
     let error: string | null = null;
     try {
-      if (!scene) throw new Error('no simulation yet');
-      json = scene.gaitJson(command);
+      if (command.type === 'normalize') {
+        // Gait files and links are judged by the module alone (gl_gait_normalize).
+        if (!scene) throw new Error('the module is not loaded yet');
+        json = scene.normalize(command.json);
+      } else {
+        if (!scene) throw new Error('no simulation yet');
+        json = scene.gaitJson(command);
+      }
     } catch (e) {
       error = e instanceof GaitlabError ? e.detail : errorMessage(e);
     }

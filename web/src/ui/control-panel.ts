@@ -2,6 +2,7 @@
 // crowd (add, remove, reset, fallen characters), steering, ground (flat, slope, bumps), and the
 // gait's share/export buttons. It only sends commands; what it shows follows the worker's reports.
 import GUI, { type Controller } from 'lil-gui';
+import { CHARACTER_TYPES } from '../gait/character';
 import { TIME_SCALES, type CharacterType, type TimeScale } from '../sim/protocol';
 import { TERRAIN_KINDS, type TerrainKind } from '../sim/terrain-grid';
 
@@ -57,7 +58,7 @@ export class ControlPanel {
     sim.add({ reset: () => actions.newScene() }, 'reset').name('Reset');
 
     const crowd = this.gui.addFolder('Crowd');
-    crowd.add(v, 'addType', ['biped', 'quadruped']).name('type to add');
+    crowd.add(v, 'addType', [...CHARACTER_TYPES]).name('type to add');
     crowd.add(v, 'addCount', 1, 16, 1).name('how many');
     crowd.add({ add: () => actions.add(v.addType, v.addCount) }, 'add').name('Add characters');
     const resetOne = crowd.add({ reset: () => actions.resetSelected() }, 'reset').name('Reset selected');

@@ -75,9 +75,13 @@ export class CurveEditor {
     this.draw();
   }
 
-  /** Shows new values (after undo, a preset, another character) without reporting a change. */
-  set(values: number[]): void {
-    if (this.dragging >= 0) return;
+  /**
+   * Shows new values (after undo, a preset, another character) without reporting a change. A
+   * drag in progress keeps its knot unless `force` (the simulation refused the drag's edit: the
+   * editor must show what the simulation has).
+   */
+  set(values: number[], force = false): void {
+    if (this.dragging >= 0 && !force) return;
     this.values = [...values];
     this.syncInputs();
     this.draw();

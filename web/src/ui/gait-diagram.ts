@@ -8,7 +8,7 @@
 // whole stance in the cycle.
 
 export interface LegTiming {
-  /** The leg's name, as in the schema's parameter names (e.g. "frontLeft"). */
+  /** The leg's name, as the schema's morphology gives it (e.g. "frontLeft"). */
   leg: string;
   dutyFactor: number;
   stepTrigger: number;
@@ -86,8 +86,9 @@ export class GaitDiagram {
     this.draw();
   }
 
-  set(legs: LegTiming[]): void {
-    if (this.drag) return;
+  /** Shows new timings; a drag in progress keeps its bar unless `force` (as CurveEditor.set). */
+  set(legs: LegTiming[], force = false): void {
+    if (this.drag && !force) return;
     this.legs = legs.map((l) => ({ ...l }));
     this.draw();
   }

@@ -1,4 +1,4 @@
-// The optimize panel (issue 6): "learning to walk" in the browser. A folded panel on the left:
+// The optimize panel: "learning to walk" in the browser. A folded panel on the left:
 // the search's options (character, method, generations, candidates, seed, threads, where it
 // starts, the objective's episode settings from the module's own table), Start and Stop, the
 // progress (generation i of N, evaluations, best objective, time per generation, time left), a
@@ -25,9 +25,10 @@ import {
 } from '../optimize/options';
 import { fitRange, tickLabels } from '../optimize/chart';
 import type { GenerationReport, OptimizerCommand, OptimizerEvent } from '../optimize/protocol';
-import { parseGait, type CharacterType, type GaitFile, type ParamSchema } from '../share/gait-file';
-import { encodeGaitHash } from '../share/link';
+import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
+import type { GaitFile } from '../share/gait-file';
 import { errorMessage, type CharacterStatus } from '../sim/protocol';
+import type { GaitTransfer } from './gait-transfer';
 
 export type OptimizeState = 'idle' | 'loading' | 'running' | 'done' | 'stopped' | 'error';
 
@@ -58,8 +59,9 @@ export interface OptimizeStatus {
 
 export interface OptimizePanelHost {
   wasmUrl: string;
-  paramSchema: ParamSchema;
   optimizerSchema: OptimizerSchema;
+  /** Share links and the clipboard, as the gait editors use them. */
+  transfer: GaitTransfer;
   defaultThreads: number;
   selected(): CharacterStatus | null;
   /** Character `id`'s gait as a gait file's JSON. */
@@ -140,7 +142,7 @@ export class OptimizePanel {
     const form = defaultForm(host.optimizerSchema, host.defaultThreads);
     const grid = el('div', { className: 'opt-grid' });
     grid.append(
-      this.select('character', 'character', ['biped', 'quadruped'], form.character, 'the type of character whose gait is searched'),
+      this.select('character', 'character', CHARACTER_TYPES, form.character, 'the type of character whose gait is searched'),
       this.select('method', 'method', METHODS, form.method, 'greedy: the thesis\'s greedy stochastic search (§3.3); cmaes: CMA-ES'),
       this.select('start', 'start from', ['preset', 'selected'], form.start, 'the type\'s preset gait, or the selected character\'s gait as it is now'),
     );
@@ -351,7 +353,8 @@ export class OptimizePanel {
     if (report.gait !== null) {
       let gait: GaitFile;
       try {
-        gait = parseGait(JSON.parse(report.gait), this.host.paramSchema);
+        // The module's own gait file (gl_opt_best_json): nothing for the page to check.
+        gait = JSON.parse(report.gait) as GaitFile;
       } catch (error) {
         this.finish('error', `the optimiser's best gait could not be read: ${errorMessage(error)}`);
         return;
@@ -497,19 +500,13 @@ export class OptimizePanel {
   /** A link to this page carrying the result (the share-link codec, web/src/share/link.ts). */
   async shareUrl(): Promise<string> {
     if (!this.result) throw new Error('there is no result to share yet');
-    return `${location.origin}${location.pathname}${location.search}${await encodeGaitHash(this.result)}`;
+    return this.host.transfer.shareUrl(this.result);
   }
 
   private async share(): Promise<void> {
-    const url = await this.shareUrl();
+    if (!this.result) throw new Error('there is no result to share yet');
+    const { url, message } = await this.host.transfer.share(this.result);
     this.linkField.value = url;
-    let copied = false;
-    try {
-      await navigator.clipboard.writeText(url);
-      copied = true;
-    } catch {
-      // No clipboard permission (an insecure origin, a headless browser): the link is in the panel.
-    }
-    this.say(`${copied ? 'Link copied' : 'Link ready (copy it from the field below)'}: ${url.length} characters.`);
+    this.say(message);
   }
 }

@@ -1,0 +1,177 @@
+// The page's test hook, `window.gaitlab`: what the end-to-end tests (tests/e2e) and the
+// benchmark drivers read and drive, with the same names and shapes since the demo page first had
+// them (stats(), characters(), getGait(id), shareUrl(id), throwBox(xyz), setGoal(id|'all',
+// {speed, turn}), ...). It only forwards to the page's parts (main.ts hands them over): nothing
+// here keeps state of its own.
+import type { CharacterType } from './gait/character';
+import type { OptimizeForm } from './optimize/options';
+import type { GaitFile, ParamPatch } from './share/gait-file';
+import type { CharacterStatus, SceneCommand, SimCommand, TimeScale, Vec3 } from './sim/protocol';
+import type { TerrainKind } from './sim/terrain-grid';
+import type { GaitEditors } from './ui/gait-editors';
+import type { OptimizePanel, OptimizeStatus } from './ui/optimize-panel';
+
+/** What `window.gaitlab.stats()` returns. */
+export interface GaitlabStats {
+  characters: number;
+  fallen: number;
+  /** Simulated seconds of the frame on screen. */
+  simTime: number;
+  /** Simulated seconds per wall-clock second, smoothed (1 = real time). */
+  realtimeFactor: number;
+  /** Rendered frames per second, smoothed. */
+  fps: number;
+  threads: number;
+  crossOriginIsolated: boolean;
+  /** WebGL draw calls of the last frame (shadow pass included): constant in the crowd's size. */
+  drawCalls: number;
+  /** How the page got its threads: 'headers', 'service worker' or 'none'. */
+  isolation: string;
+  /** Bodies in the frame on screen. */
+  bodies: number;
+  paused: boolean;
+  timeScale: TimeScale;
+  /** True once a simulated frame has been drawn. */
+  ready: boolean;
+  /** The problem shown on the page, if any. */
+  error: string | null;
+  /** Whether this build has the parameter schema (gait editing and sharing). */
+  gaits: boolean;
+  selected: number | null;
+  /** The ground the simulation reports, and the one the page draws (they differ for a moment after a change). */
+  terrain: TerrainKind;
+  drawnTerrain: TerrainKind | null;
+}
+
+export interface GaitlabHook {
+  stats(): GaitlabStats;
+  characters(): CharacterStatus[];
+  getGait(id: number): Promise<GaitFile>;
+  shareUrl(id: number): Promise<string>;
+  /** The preset gait of a type, as the module has it. */
+  presetGait(type: CharacterType): Promise<GaitFile>;
+  /**
+   * An edit through the gait editors, as a gesture makes one: `patch` ({parameter: value}) to
+   * the edited gait (select a character first, or the editors edit every character of a type).
+   * Resolves with null when the simulation accepted it, or with its refusal (the editors then
+   * show the gait the simulation has, and the page says why).
+   */
+  editGait(patch: ParamPatch): Promise<string | null>;
+  /** The gait the editors show, or null before they have one. */
+  editorGait(): GaitFile | null;
+  throwBox(target: Vec3): void;
+  setGoal(id: number | 'all', goal: { speed: number; turn: number }): void;
+  select(id: number | null): void;
+  /** `count` fixed steps while paused. */
+  step(count: number): void;
+  pause(): void;
+  resume(): void;
+  /** Screen position (CSS pixels) of character `id`'s root body, for tests that click it. */
+  screenPosition(id: number): { x: number; y: number } | null;
+
+  // ---- The optimize panel. These drive the panel itself, as its buttons do. ----
+
+  /**
+   * Starts a search as the panel's Start button does, after writing `form` into the panel's
+   * fields (as text, as if typed; fields left out keep their values). Field names: character
+   * ('biped' | 'quadruped'), method ('greedy' | 'cmaes'), start ('preset' | 'selected'),
+   * generations, candidates, seed, threads, speeds ("0.5, 1"), and every objective setting by
+   * its gl_opt_settings_json name (seconds, warmup, starts, turnRate, wd, …). Resolves with
+   * optimizeStatus() when the search ends (state 'done', or 'stopped' after stopOptimize());
+   * rejects with the panel's message if the form is refused (every problem, each naming its
+   * field) or the search fails.
+   */
+  optimize(form?: OptimizeForm): Promise<OptimizeStatus>;
+  /** The panel's state: progress, history of the best objective, the chart's point count, the result. */
+  optimizeStatus(): OptimizeStatus;
+  /** The panel's Stop: ends the search at once, keeping the best of the finished generations. */
+  stopOptimize(): void;
+  /** The panel's Apply: the result to the selected character or to every character of its type. */
+  applyOptimizeResult(target: 'selected' | 'all'): Promise<void>;
+  /** The panel's Share: a link to this page carrying the result. */
+  optimizeShareUrl(): Promise<string>;
+  /** The learner's id (the character walking the best so far), or null. */
+  learner(): number | null;
+  /** Changes the ground (as the control panel does): flat, slope or bumps. */
+  setTerrain(kind: TerrainKind): void;
+  /** Height of the drawn ground at (x, z): from the samples the page drew, the physics' own. */
+  groundHeight(x: number, z: number): number | null;
+  /** Puts the camera at `from` looking at `to` (screenshots and tests; orbiting continues from there). */
+  view(from: Vec3, to: Vec3): void;
+}
+
+declare global {
+  interface Window {
+    gaitlab: GaitlabHook;
+  }
+}
+
+declare global {
+  interface Window {
+    gaitlab: GaitlabHook;
+  }
+}
+
+/** The page's parts the hook forwards to (main.ts). */
+export interface TestHookHost {
+  stats(): GaitlabStats;
+  characters(): CharacterStatus[];
+  editors(): GaitEditors | null;
+  optimizer(): OptimizePanel | null;
+  /** Why the optimize panel is missing, when it is. */
+  optimizerMissing(): string;
+  send(command: SceneCommand): void;
+  control(command: SimCommand): void;
+  select(id: number | null): void;
+  throwBox(target: Vec3): void;
+  learner(): number | null;
+  setTerrain(kind: TerrainKind): void;
+  screenPosition(id: number): { x: number; y: number } | null;
+  groundHeight(x: number, z: number): number | null;
+  view(from: Vec3, to: Vec3): void;
+}
+
+/** Installs `window.gaitlab`, frozen. */
+export function installTestHook(host: TestHookHost): GaitlabHook {
+  const editors = (): GaitEditors => {
+    const e = host.editors();
+    if (!e) throw new Error('this build has no parameter schema');
+    return e;
+  };
+  const optimizer = (): OptimizePanel => {
+    const o = host.optimizer();
+    if (!o) throw new Error(host.optimizerMissing());
+    return o;
+  };
+  const hook: GaitlabHook = {
+    stats: () => host.stats(),
+    characters: () => host.characters().map((c) => ({ ...c, position: [...c.position] as Vec3, goal: { ...c.goal } })),
+    getGait: async (id) => editors().gaitOf(id),
+    shareUrl: async (id) => editors().shareUrl(id),
+    presetGait: async (type) => editors().presetOf(type),
+    editGait: async (patch) => editors().editAsGesture(patch),
+    editorGait: () => host.editors()?.editorGait ?? null,
+    throwBox: (target) => host.throwBox(target),
+    setGoal: (id, goal) => host.send({ type: 'setGoal', id, speed: goal.speed, turn: goal.turn }),
+    select: (id) => host.select(id),
+    step: (count) => host.control({ type: 'step', count }),
+    pause: () => host.control({ type: 'pause' }),
+    resume: () => host.control({ type: 'resume' }),
+    optimize: (form) => {
+      const o = host.optimizer();
+      if (!o) return Promise.reject(new Error(host.optimizerMissing()));
+      return o.start(form);
+    },
+    optimizeStatus: () => optimizer().status(),
+    stopOptimize: () => host.optimizer()?.stop(),
+    applyOptimizeResult: async (target) => optimizer().applyResult(target),
+    optimizeShareUrl: async () => optimizer().shareUrl(),
+    learner: () => host.learner(),
+    screenPosition: (id) => host.screenPosition(id),
+    setTerrain: (kind) => host.setTerrain(kind),
+    groundHeight: (x, z) => host.groundHeight(x, z),
+    view: (from, to) => host.view(from, to),
+  };
+  window.gaitlab = Object.freeze(hook);
+  return hook;
+}

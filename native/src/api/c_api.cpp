@@ -68,9 +68,12 @@ bool benchLegs(int legs) { return legs == GL_LEGS_MIXED || legs == GL_LEGS_BIPED
 std::string notLegs(int legs) { return "legs: " + str(legs) + " is not 0 (mixed), 2 or 4"; }
 
 // The characters a parameter call addresses: the one with id `characterId`, or with -1 every
-// character of `c`. Returns GL_OK or the refusal.
-int targetsOf(const Simulation& simulation, int characterId, gaitlab::gait::Character c, std::vector<int>* targets) {
+// character of `kind` (whose gait::Character goes to `out`). Returns GL_OK or the refusal.
+int targetsOf(const Simulation& simulation, int characterId, int kind, gaitlab::gait::Character* out,
+              std::vector<int>* targets) {
   using namespace gaitlab::gait;
+  if (!characterKind(kind, out)) return refuse(GL_ERR_KIND, notACharacter(kind));
+  const Character c = *out;
   if (characterId < 0) {
     for (int i = 0; i < simulation.characterCount(); ++i) {
       if (characterOf(simulation.character(i).morphology()) == c) targets->push_back(i);
@@ -176,10 +179,9 @@ const char* gl_preset_json(int kind) {
 int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
   using namespace gaitlab::gait;
   Character c;
-  if (!characterKind(kind, &c)) return refuse(GL_ERR_KIND, notACharacter(kind));
-  Simulation& simulation = *sim(s);
   std::vector<int> targets;
-  if (const int code = targetsOf(simulation, characterId, c, &targets)) return code;
+  if (const int code = targetsOf(*sim(s), characterId, kind, &c, &targets)) return code;
+  Simulation& simulation = *sim(s);
   GaitFile file;
   if (const auto error = parseGaitFile(text ? text : "", c, &file))
     return refuse(GL_ERR_INVALID_PARAMS, error->describe());
@@ -197,10 +199,9 @@ const char* gl_gait_normalize(const char* text) {
 int gl_sim_patch_params(void* s, int characterId, int kind, const char* patch) {
   using namespace gaitlab::gait;
   Character c;
-  if (!characterKind(kind, &c)) return refuse(GL_ERR_KIND, notACharacter(kind));
-  Simulation& simulation = *sim(s);
   std::vector<int> targets;
-  if (const int code = targetsOf(simulation, characterId, c, &targets)) return code;
+  if (const int code = targetsOf(*sim(s), characterId, kind, &c, &targets)) return code;
+  Simulation& simulation = *sim(s);
   // The values are checked once, against the schema, before any character changes: the patch
   // is applied to a scratch copy first, then to each character's own parameters.
   GaitParams scratch = defaultParams(c);
@@ -335,7 +336,6 @@ const float* gl_sim_terrain_heights(void* s) {
 double gl_sim_ground_height(void* s, double x, double z) {
   if (!isFinite(x) || !isFinite(z)) return refuse(kNaN, "point: (" + str(x) + ", " + str(z) + ") is not finite");
   return sim(s)->groundHeight(x, z);
-}
 }
 
 }  // extern "C"

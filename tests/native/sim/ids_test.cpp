@@ -6,6 +6,7 @@
 #include <set>
 
 #include "api/c_api.h"
+#include "api/handles.h"
 #include "sim/ids.h"
 #include "sim/simulation.h"
 
@@ -77,21 +78,22 @@ TEST(CharacterIds, AStaleIdIsRefusedByEveryCommand) {
   ASSERT_EQ(gl_sim_add_characters(s, GL_LAYOUT_ALTERNATING, 3), 3);
   ASSERT_EQ(gl_sim_remove_character(s, 1), 0);
   ASSERT_EQ(gl_sim_add_characters(s, GL_KIND_BIPED, 1), 1);
-  const int fresh = static_cast<Simulation*>(s)->idOf(2);  // the characters added last come last
+  const int fresh = gaitlab::api::simulationOf(s).idOf(2);  // the characters added last come last
   EXPECT_NE(fresh, 1);
   EXPECT_EQ(IdPool::slotOf(fresh), 1) << "the new character took the freed slot, a generation on";
   // Id 1 named the removed character; the new one in its slot must not answer to it.
-  EXPECT_EQ(gl_sim_set_goal(s, 1, 1.0, 0.0), -1);
-  EXPECT_EQ(gl_sim_drag(s, 1, 0, 0, 0, 0, 0, 1, 0), -1);
-  EXPECT_EQ(gl_sim_reset_character(s, 1), -1);
-  EXPECT_EQ(gl_sim_remove_character(s, 1), -1);
+  const gl_drag_settings staleDrag{1, 0, {0, 0, 0}, {0, 1, 0}};
+  EXPECT_EQ(gl_sim_set_goal(s, 1, 1.0, 0.0), GL_ERR_NO_CHARACTER);
+  EXPECT_EQ(gl_sim_drag(s, &staleDrag), GL_ERR_NO_CHARACTER);
+  EXPECT_EQ(gl_sim_reset_character(s, 1), GL_ERR_NO_CHARACTER);
+  EXPECT_EQ(gl_sim_remove_character(s, 1), GL_ERR_NO_CHARACTER);
   EXPECT_EQ(gl_sim_get_params(s, 1), nullptr);
   EXPECT_EQ(gl_sim_character_count(s), 3);
   // Ids that never named anything, and a prop's id, name no character either.
-  EXPECT_EQ(gl_sim_set_goal(s, 12345, 1.0, 0.0), -1);
+  EXPECT_EQ(gl_sim_set_goal(s, 12345, 1.0, 0.0), GL_ERR_NO_CHARACTER);
   const int box = gl_sim_spawn(s, GL_KIND_BOX, 0, 5, 0);
   ASSERT_GE(box, 0);
-  EXPECT_EQ(gl_sim_reset_character(s, box), -1);
+  EXPECT_EQ(gl_sim_reset_character(s, box), GL_ERR_NO_CHARACTER);
   EXPECT_EQ(gl_sim_set_goal(s, fresh, 0.5, 0.0), 0);
   gl_sim_destroy(s);
 }

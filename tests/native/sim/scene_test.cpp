@@ -73,10 +73,10 @@ TEST(SceneLayout, AddCharactersIsSpawningAtTheLayoutsPlacesWithTheCruiseGoal) {
 
 TEST(SceneLayout, AddCharactersRefusesWhatItCannotPlace) {
   void* s = gl_sim_create(1, 1);
-  EXPECT_EQ(gl_sim_add_characters(s, GL_KIND_BOX, 2), -1);
-  EXPECT_EQ(gl_sim_add_characters(s, 99, 2), -1);
-  EXPECT_EQ(gl_sim_add_characters(s, GL_KIND_BIPED, -1), -1);
-  EXPECT_EQ(gl_sim_add_apart(s, GL_KIND_BOX), -1);
+  EXPECT_EQ(gl_sim_add_characters(s, GL_KIND_BOX, 2), GL_ERR_ARGUMENT);
+  EXPECT_EQ(gl_sim_add_characters(s, 99, 2), GL_ERR_ARGUMENT);
+  EXPECT_EQ(gl_sim_add_characters(s, GL_KIND_BIPED, -1), GL_ERR_ARGUMENT);
+  EXPECT_EQ(gl_sim_add_apart(s, GL_KIND_BOX), GL_ERR_ARGUMENT);
   EXPECT_EQ(gl_sim_character_count(s), 0);
   gl_sim_destroy(s);
 }
@@ -157,8 +157,16 @@ std::string replayThroughTheCAbi(int threads, uint32_t seed) {
           gl_sim_set_goal(s, c.id, c.a, c.b);
           if (c.id == -1) lastGoal[0][0] = lastGoal[1][0] = c.a, lastGoal[0][1] = lastGoal[1][1] = c.b;
           break;
-        case Command::Throw: gl_sim_throw_box(s, -3, 1.2, 2, 9, 1, -1, 0.12); break;
-        case Command::Drag: gl_sim_drag(s, c.id, 0, 0, 0.1, 0, 1, 2.5, 1); break;
+        case Command::Throw: {
+          const gl_throw_settings t{{-3, 1.2, 2}, {9, 1, -1}, 0.12};
+          gl_sim_throw_box(s, &t);
+          break;
+        }
+        case Command::Drag: {
+          const gl_drag_settings d{c.id, 0, {0, 0.1, 0}, {1, 2.5, 1}};
+          gl_sim_drag(s, &d);
+          break;
+        }
         case Command::EndDrag: gl_sim_end_drag(s); break;
         case Command::Reset: gl_sim_reset_character(s, c.id); break;
         case Command::Remove: gl_sim_remove_character(s, c.id); break;

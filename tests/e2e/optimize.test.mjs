@@ -1,4 +1,4 @@
-// End to end: the demo page's optimize panel (issue 6) in headless Chromium, with the real WASM
+// End to end: the demo page's optimize panel in headless Chromium, with the real WASM
 // module: a search runs in its own worker while the crowd keeps running, the chart gets a point
 // per generation, the learner walks the best so far, Stop keeps the best, Apply gives it to the
 // characters (undo takes it back), Share makes a link that reproduces it, and bad input is

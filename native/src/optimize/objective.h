@@ -4,8 +4,8 @@
 //
 // f_d motion deviation, f_v velocity deviation, f_a leg-frame acceleration, f_r leg-frame
 // rotation deviation. The thesis names the terms but not their formulas (and its original code
-// ran the objective, the reference gait and the physics on three different clocks: REFERENCE.md
-// defect 9). Here every term is measured on the simulation's own clock, once per fixed step, in
+// ran the objective, the reference gait and the physics on three different clocks: defect 9
+// of the original implementation, docs/original-implementation.md). Here every term is measured on the simulation's own clock, once per fixed step, in
 // the goal heading frame: the frame that starts at the character's start heading and turns at
 // the goal turn rate. The reference is that goal, never the gait's own parameters, so the
 // optimiser cannot lower a term by redefining what the controller aims at:

@@ -5,7 +5,7 @@
 // table (gl_opt_settings_json, native/src/optimize/objective.h): nothing of it is written out
 // here. What is the panel's own is the search's size: generations, candidates, seed, threads
 // (the same bounds as `gaitlab optimize`, native/src/api/cli.cpp).
-import type { CharacterType } from '../share/gait-file';
+import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
 import { MAX_THREADS } from '../sim/protocol';
 
 /** One objective setting as gl_opt_settings_json describes it. */
@@ -121,7 +121,7 @@ function checkChoice<T extends string>(form: OptimizeForm, field: string, choice
  */
 export function checkOptimizeForm(form: OptimizeForm, schema: OptimizerSchema, selected: CharacterType | null): Checked {
   const problems: FieldProblem[] = [];
-  const character = checkChoice<CharacterType>(form, 'character', ['biped', 'quadruped'], problems);
+  const character = checkChoice<CharacterType>(form, 'character', CHARACTER_TYPES, problems);
   const method = checkChoice<Method>(form, 'method', METHODS, problems);
   const start = checkChoice<StartFrom>(form, 'start', START_FROM, problems);
   if (start === 'selected') {

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   const uint32_t seed = argc > 5 ? static_cast<uint32_t>(std::atol(argv[5])) : 1;
   sim::Simulation sim(1, seed);
   if (kind != physics::TerrainKind::Flat) sim.setTerrain(kind);
-  sim.spawn(sim::Kind::Biped, 0, 0, heading);
+  sim.spawn(gait::Character::Biped, 0, 0, heading);
   sim.setGoal(0, {speed, 0});
   const physics::Character& ch = sim.character(0);
   const body::Morphology& m = ch.morphology();

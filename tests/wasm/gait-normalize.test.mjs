@@ -13,6 +13,7 @@ import { fileURLToPath } from 'node:url';
 const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const wasmDir = path.join(repoDir, 'build', 'wasm');
 const KIND = { biped: 0, quadruped: 1, box: 2 };
+const GL_ERR_INVALID_PARAMS = -4; // native/src/api/c_api.h
 
 let Module;
 
@@ -145,7 +146,7 @@ describe('gl_sim_patch_params: an edit as a patch', () => {
     const start = params();
     assert.equal(patch({ period: 1.1 }), 0);
     assert.deepEqual(params(), { ...start, period: 1.1 });
-    assert.equal(patch({ period: 0.9, 'left.dutyFactor': 0.95 }), 1);
+    assert.equal(patch({ period: 0.9, 'left.dutyFactor': 0.95 }), GL_ERR_INVALID_PARAMS);
     assert.equal(lastError(), 'left.dutyFactor: 0.95 is outside [0.2, 0.9]');
     assert.deepEqual(params(), { ...start, period: 1.1 }, 'nothing of a refused patch applies');
   });

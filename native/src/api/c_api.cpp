@@ -21,7 +21,7 @@
 #include "sim/simulation.h"
 
 using gaitlab::api::SimHandle;
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Simulation;
 
 namespace {
@@ -48,11 +48,10 @@ bool isFinite(const double (&v)[3]) { return isFinite(v[0]) && isFinite(v[1]) &&
 std::string str(int v) { return std::to_string(v); }
 std::string str(double v) { return nlohmann::json(v).dump(); }
 
-// The kinds are numbered once (gait::Character); the ABI's numbers and the simulation's say the same.
-static_assert(GL_KIND_BIPED == static_cast<int>(gaitlab::gait::Character::Biped) &&
-              GL_KIND_QUADRUPED == static_cast<int>(gaitlab::gait::Character::Quadruped));
-static_assert(GL_KIND_BIPED == static_cast<int>(Kind::Biped) && GL_KIND_QUADRUPED == static_cast<int>(Kind::Quadruped) &&
-              GL_KIND_BOX == static_cast<int>(Kind::Box));
+// Character types are numbered once (gait::Character, which the simulation uses too); the ABI's
+// numbers say the same, and a box, a prop rather than a character, takes the next number.
+static_assert(GL_KIND_BIPED == static_cast<int>(Character::Biped) &&
+              GL_KIND_QUADRUPED == static_cast<int>(Character::Quadruped) && GL_KIND_BOX == GL_KIND_QUADRUPED + 1);
 
 bool characterKind(int kind, gaitlab::gait::Character* c) {
   const auto character = gaitlab::gait::characterFromKind(kind);
@@ -111,14 +110,15 @@ int gl_sim_spawn(void* s, int kind, double x, double z, double heading) {
   if (!isFinite(x) || !isFinite(z) || !isFinite(heading))
     return refuse(GL_ERR_ARGUMENT, "position and heading: (" + str(x) + ", " + str(z) + ", " + str(heading) +
                                        ") are not all finite");
-  const int id = sim(s)->spawn(static_cast<Kind>(kind), x, z, heading);
+  const int id = kind == GL_KIND_BOX ? sim(s)->spawnBox(x, z, heading)
+                                     : sim(s)->spawn(static_cast<Character>(kind), x, z, heading);
   if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
   return id;
 }
 
 double gl_cruise_speed(int kind) {
   if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(kNaN, notACharacter(kind));
-  return Simulation::cruiseSpeed(static_cast<Kind>(kind));
+  return Simulation::cruiseSpeed(static_cast<Character>(kind));
 }
 
 int gl_sim_add_characters(void* s, int kind, int count) {
@@ -131,7 +131,7 @@ int gl_sim_add_characters(void* s, int kind, int count) {
 
 int gl_sim_add_apart(void* s, int kind) {
   if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(GL_ERR_ARGUMENT, notACharacter(kind));
-  const int id = sim(s)->addApart(static_cast<Kind>(kind));
+  const int id = sim(s)->addApart(static_cast<Character>(kind));
   if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
   return id;
 }

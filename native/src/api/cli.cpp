@@ -127,7 +127,7 @@ int walk(int argc, char** argv) {
   }
   const gait::Character c = chosen.value_or(gait::Character::Biped);
   const std::string character = gait::characterName(c);
-  w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
+  w.character = c;
   const std::string terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
   if (!physics::parseTerrain(terrain, &w.terrain))
     return usageError("--terrain: '" + terrain + "' is not flat, slope or bumps");

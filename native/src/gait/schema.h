@@ -23,8 +23,8 @@
 namespace gaitlab::gait {
 
 // The kinds of character: the one list of them. Their numbers are the C ABI's GL_KIND_BIPED and
-// GL_KIND_QUADRUPED (native/src/api/c_api.h checks it) and the simulation's sim::Kind; the page
-// reads them from the exported schema ("morphologies": {name: {"kind": n, ...}}).
+// GL_KIND_QUADRUPED (native/src/api/c_api.cpp checks it); the simulation uses this enum too; the
+// page reads them from the exported schema ("morphologies": {name: {"kind": n, ...}}).
 enum class Character { Biped = 0, Quadruped = 1 };
 constexpr Character kCharacters[] = {Character::Biped, Character::Quadruped};
 

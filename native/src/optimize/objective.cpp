@@ -148,7 +148,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
   sim::WalkOptions w;
   w.terrain = ground.terrain;
   w.heading = ground.heading;
-  w.character = c == gait::Character::Biped ? sim::Kind::Biped : sim::Kind::Quadruped;
+  w.character = c;
   w.params = &params;
   w.speed = speed;
   w.turnRate = settings.turnRate;

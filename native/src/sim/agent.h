@@ -30,7 +30,7 @@ struct Agent {
   bool footContact[gait::kMaxLegs] = {false, false, false, false};
   const physics::World* world;
   int id = -1;  // its IdPool id
-  Kind kind = Kind::Biped;
+  Character kind = Character::Biped;
   bool down = false;        // hasFallen after the last step (set in its shard's task)
   double fallenSince = -1;  // simulated time it was first seen fallen; -1 = standing
   int shard = 0;

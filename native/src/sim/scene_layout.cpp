@@ -9,13 +9,13 @@ namespace {
 int squareColumns(int n) { return std::max(1, static_cast<int>(std::ceil(std::sqrt(n)))); }
 }  // namespace
 
-Kind crowdKind(Crowd crowd, int i) {
+Character crowdKind(Crowd crowd, int i) {
   switch (crowd) {
-    case Crowd::Bipeds: return Kind::Biped;
-    case Crowd::Quadrupeds: return Kind::Quadruped;
+    case Crowd::Bipeds: return Character::Biped;
+    case Crowd::Quadrupeds: return Character::Quadruped;
     case Crowd::Mixed: break;
   }
-  return i % 2 == 0 ? Kind::Biped : Kind::Quadruped;
+  return i % 2 == 0 ? Character::Biped : Character::Quadruped;
 }
 
 Place benchmarkPlace(int i, int characters, double spacing) {

@@ -10,16 +10,19 @@
 //    (gl_sim_add_characters) rather than computing them, so a page run can be replayed natively
 //    from its seed, this layout and its command log.
 #pragma once
+#include "gait/schema.h"
 
 namespace gaitlab::sim {
 
-enum class Kind { Biped = 0, Quadruped = 1, Box = 2 };
+// A character's type is the gait schema's: one enum (gait::Character) from the schema through
+// the simulation to the C ABI's GL_KIND_* numbers. Boxes are props, not a type of character.
+using gait::Character;
 
 // Who makes up a crowd: thesis §4.1 measured bipeds and quadrupeds apart; the demo page mixes
 // them, alternating so that each type spreads over the whole grid.
 enum class Crowd { Bipeds, Quadrupeds, Mixed };
 // The type of the i-th character of a crowd (Mixed: a biped first, then in turn).
-Kind crowdKind(Crowd crowd, int i);
+Character crowdKind(Crowd crowd, int i);
 
 // A place to stand: ground-plane position (metres) and heading (radians about +y, 0 = +z).
 struct Place {

@@ -42,8 +42,7 @@ Simulation::~Simulation() {
 
 // ---- Scenes -------------------------------------------------------------------------------------
 
-int Simulation::spawn(Kind kind, double x, double z, double heading) {
-  if (kind == Kind::Box) return spawnBox(x, z, heading);
+int Simulation::spawn(Character kind, double x, double z, double heading) {
   return spawnCharacter(kind, x, z, heading, shards_.leastPopulated());
 }
 
@@ -58,8 +57,8 @@ int Simulation::spawnBox(double x, double z, double heading) {
   return id;
 }
 
-int Simulation::spawnCharacter(Kind kind, double x, double z, double heading, int shard) {
-  const body::Morphology& m = kind == Kind::Biped ? biped_ : quadruped_;
+int Simulation::spawnCharacter(Character kind, double x, double z, double heading, int shard) {
+  const body::Morphology& m = kind == Character::Biped ? biped_ : quadruped_;
   if (!render_.hasRoom(static_cast<int>(m.segments.size()))) return -1;
   const int id = ids_.create(characterCount());
   if (id < 0) return -1;
@@ -81,7 +80,7 @@ int Simulation::addCharacters(Crowd crowd, int count) {
   int added = 0;
   for (int i = 0; i < count; ++i) {
     const Place p = layout_.next();
-    const Kind kind = crowdKind(crowd, i);
+    const Character kind = crowdKind(crowd, i);
     if (spawn(kind, p.x, p.z, p.heading) < 0) break;  // the render buffer is full
     agents_.back()->controller.setGoal({cruiseSpeed(kind), 0.0});
     ++added;
@@ -89,8 +88,7 @@ int Simulation::addCharacters(Crowd crowd, int count) {
   return added;
 }
 
-int Simulation::addApart(Kind kind) {
-  if (kind == Kind::Box) return -1;
+int Simulation::addApart(Character kind) {
   const Place p = layout_.apart();
   return spawn(kind, p.x, p.z, p.heading);
 }
@@ -102,7 +100,7 @@ void Simulation::demoScene(int characters) {
   const double width = SceneLayout::kSpacingX * std::max(1.0, std::ceil(std::sqrt(characters)));
   for (int i = 0; i < std::max(2, characters / 2); ++i) {
     const double x = (rng.next() - 0.5) * width, z = (rng.next() - 0.5) * width;
-    spawn(Kind::Box, x, z, rng.next() * kPi);
+    spawnBox(x, z, rng.next() * kPi);
   }
   publish();
 }
@@ -110,7 +108,7 @@ void Simulation::demoScene(int characters) {
 void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
   for (int i = 0; i < characters; ++i) {
     const Place p = benchmarkPlace(i, characters, spacing);
-    const Kind k = crowdKind(crowd, i);
+    const Character k = crowdKind(crowd, i);
     // Contiguous chunks of the grid per shard, split like the thesis's thread chunks (§4.3).
     int shard = 0;
     while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;

@@ -48,9 +48,10 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   // ---- Scenes ---------------------------------------------------------------------------------
-  // Spawns a character standing at (x, z) or a box dropped from 1.5 m there. Returns its id,
-  // or -1 if the render buffer has no room left.
-  int spawn(Kind kind, double x, double z, double heading);
+  // Spawns a character standing at (x, z), or a box (a prop, 0.3 m, 4 kg) dropped from 1.5 m
+  // there. Returns its id, or -1 if the render buffer has no room left.
+  int spawn(Character kind, double x, double z, double heading);
+  int spawnBox(double x, double z, double heading);
   // `count` characters (Crowd::Mixed: biped and quadruped in turn, a biped first) in the next
   // free places of the demo page's layout (SceneLayout), each walking forward at its type's
   // cruise speed. The first call sizes the layout's grid for its `count`. Returns how many it
@@ -58,7 +59,7 @@ class Simulation {
   int addCharacters(Crowd crowd, int count);
   // One character at the layout's place apart (left of the grid), as spawn() places it: where
   // the optimize panel's learner walks alone. Returns its id, or -1.
-  int addApart(Kind kind);
+  int addApart(Character kind);
   // The demo page's scene: `characters` figures of a mixed crowd in the page's layout
   // (addCharacters(Crowd::Mixed, characters) on a new simulation), plus a few boxes dropped at
   // places drawn from the seed, props for the tests to push against.
@@ -73,7 +74,7 @@ class Simulation {
   void crowdScene(Crowd crowd, int characters, double spacing);
   // The speed each type's preset is tuned and benchmarked for (bench/walking.mjs; also the demo's
   // start goals): a 0.49 m dog walks slower than a 1.8 m human.
-  static double cruiseSpeed(Kind kind) { return kind == Kind::Biped ? 1.0 : 0.4; }
+  static double cruiseSpeed(Character kind) { return kind == Character::Biped ? 1.0 : 0.4; }
 
   // ---- Stepping -------------------------------------------------------------------------------
   void step(int steps);
@@ -122,7 +123,7 @@ class Simulation {
   // The same two under the names the gait-parameter functions of the C ABI use.
   int characterIndex(int id) const { return indexOf(id); }
   int characterId(int index) const { return idOf(index); }
-  Kind kindOf(int index) const { return agents_[index]->kind; }
+  Character kindOf(int index) const { return agents_[index]->kind; }
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }
   gait::Controller& controller(int i) { return agents_[i]->controller; }
@@ -170,8 +171,7 @@ class Simulation {
   double autoReset() const { return interaction_.autoResetSeconds; }
 
  private:
-  int spawnCharacter(Kind kind, double x, double z, double heading, int shard);
-  int spawnBox(double x, double z, double heading);
+  int spawnCharacter(Character kind, double x, double z, double heading, int shard);
   void publish() { render_.publish(stepIndex(), time()); }
   void applyDrag();     // interaction.cpp: the drag spring, before the physics of a step
   void updateFallen();  // interaction.cpp: fall times and the automatic reset, after it

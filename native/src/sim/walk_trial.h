@@ -13,7 +13,7 @@
 namespace gaitlab::sim {
 
 struct WalkOptions {
-  Kind character = Kind::Biped;
+  Character character = Character::Biped;
   const gait::GaitParams* params = nullptr;  // nullptr: the character's defaults
   double speed = 1.0;      // goal speed, m/s
   double turnRate = 0.0;   // goal turn rate, rad/s

@@ -255,7 +255,7 @@ TEST(OptimizeObjective, TimingDeviationIsTheMeanSquaredDutyError) {
   s.wt = 10.0;
   const ObjectiveTerms weighted = runEpisode(gaitlab::gait::Character::Quadruped, p, s, 0.5, 0, 1);
   gaitlab::sim::WalkOptions w;
-  w.character = gaitlab::sim::Kind::Quadruped;
+  w.character = gaitlab::gait::Character::Quadruped;
   w.params = &p;
   w.speed = 0.5;
   w.seconds = 3.0;

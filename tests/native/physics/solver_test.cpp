@@ -12,7 +12,7 @@
 #include "sim/simulation.h"
 
 using gaitlab::sim::Crowd;
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Mode;
 using gaitlab::sim::Simulation;
 
@@ -68,7 +68,7 @@ TEST(FastSolver, PropsOnCharactersAndSeveralShardsAsBullet) {
   expectSameAsBullet("demo scene, props", 1, 300, [](Simulation& sim) { sim.demoScene(6); });
   expectSameAsBullet("mixed crowd, thrown boxes, 3 shards", 3, 240, [](Simulation& sim) {
     sim.crowdScene(Crowd::Mixed, 7, 2.5);
-    sim.spawn(Kind::Box, 1.0, 0.5, 0.3);
+    sim.spawnBox(1.0, 0.5, 0.3);
     // Boxes thrown into a character: it shares an island with them while they touch.
     sim.throwBox(Eigen::Vector3d(-3, 1.2, 0), Eigen::Vector3d(8, 0, 0), 0.12);
     sim.throwBox(Eigen::Vector3d(0, 1.0, -3), Eigen::Vector3d(0, 0, 9), 0.15);

@@ -19,7 +19,7 @@
 using gaitlab::physics::Terrain;
 using gaitlab::physics::TerrainKind;
 using gaitlab::physics::World;
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Simulation;
 
 namespace {
@@ -214,7 +214,7 @@ TEST(Terrain, SameSeedSameGroundInEveryShard) {
     Simulation sim(1, 9, 3);
     sim.setTerrain(TerrainKind::Bumps);
     ASSERT_EQ(sim.shards(), 3);
-    for (int i = 0; i < 3; ++i) sim.spawn(Kind::Biped, 2.5 * i, 0.3 * i, 0.4 * i);
+    for (int i = 0; i < 3; ++i) sim.spawn(Character::Biped, 2.5 * i, 0.3 * i, 0.4 * i);
     for (int i = 0; i < 3; ++i) ASSERT_EQ(sim.shardOf(i), i);
     sim.step(60);
     hashes[run] = sim.stateHash();
@@ -238,8 +238,8 @@ TEST(Terrain, EveryShardRayCastsTheSameHeights) {
 
 TEST(Terrain, CharactersSpawnStandingOnTheGround) {
   for (TerrainKind kind : {TerrainKind::Slope, TerrainKind::Bumps}) {
-    for (Kind who : {Kind::Biped, Kind::Quadruped}) {
-      SCOPED_TRACE(std::string(gaitlab::physics::terrainName(kind)) + (who == Kind::Biped ? " biped" : " quadruped"));
+    for (Character who : {Character::Biped, Character::Quadruped}) {
+      SCOPED_TRACE(std::string(gaitlab::physics::terrainName(kind)) + (who == Character::Biped ? " biped" : " quadruped"));
       Simulation sim(1, 4);
       sim.setTerrain(kind);
       // On the up-grade, across it, on a ridge, in a valley; on and between bumps.
@@ -253,7 +253,7 @@ TEST(Terrain, CharactersSpawnStandingOnTheGround) {
         // The rest pose is rigid: a foot may hang above lower ground by as much as the ground
         // falls away across the figure: on a 5° slope 3.2 cm across the biped's two feet seen
         // diagonally (0.37 m), 7.9 cm along the quadruped (0.9 m from hind to front toes).
-        EXPECT_LE(g.max, who == Kind::Biped ? 0.035 : 0.09) << "character " << c << ": a foot hangs far above the ground";
+        EXPECT_LE(g.max, who == Character::Biped ? 0.035 : 0.09) << "character " << c << ": a foot hangs far above the ground";
       }
       // Settled on it a quarter of a second later: leg frames at their height above this ground,
       // no foot sunk in. (The quadruped's gait does not stand for long even on flat ground yet,
@@ -261,7 +261,7 @@ TEST(Terrain, CharactersSpawnStandingOnTheGround) {
       sim.setGoal(-1, {0.0, 0.0});
       for (double seconds : {0.25, 1.0}) {
         sim.step(static_cast<int>(std::lround(seconds * 120)) - static_cast<int>(sim.stepIndex()));
-        if (who == Kind::Quadruped && seconds > 0.5) break;
+        if (who == Character::Quadruped && seconds > 0.5) break;
         for (int c = 0; c < sim.characterCount(); ++c) {
           const auto& m = sim.character(c).morphology();
           const auto root = sim.character(c).segmentState(m.legFrames[0]);
@@ -277,9 +277,9 @@ TEST(Terrain, CharactersSpawnStandingOnTheGround) {
 
 TEST(Terrain, ChangingTheGroundRePlacesTheCharacters) {
   Simulation sim(2, 8);
-  const int a = sim.spawn(Kind::Biped, 0, 0, 0);
-  const int b = sim.spawn(Kind::Quadruped, 3, 1, 0.5);
-  sim.spawn(Kind::Box, 1.5, 1.5, 0);
+  const int a = sim.spawn(Character::Biped, 0, 0, 0);
+  const int b = sim.spawn(Character::Quadruped, 3, 1, 0.5);
+  sim.spawnBox(1.5, 1.5, 0);
   gaitlab::gait::GaitParams params = sim.controller(0).params();
   params.period *= 1.1;
   sim.controller(0).setParams(params);
@@ -363,7 +363,7 @@ TEST(Terrain, AFlatHeightfieldWalksLikeThePlane) {
   for (int run = 0; run < 2; ++run) {
     Simulation sim(1, 1);
     if (run == 1) sim.setTerrain(std::make_shared<const Terrain>(TerrainKind::Bumps, 1, 0.0));
-    sim.spawn(Kind::Biped, 0, 0, 0);
+    sim.spawn(Character::Biped, 0, 0, 0);
     sim.setGoal(0, {1.0, 0.0});
     const auto start = sim.character(0).segmentState(0).position;
     for (int s = 0; s < 8 * 120; ++s) {
@@ -391,7 +391,7 @@ TEST(Terrain, TheBipedPresetWalksTheSlopeAndTheBumpsFor30Seconds) {
                          Run{TerrainKind::Slope, kPi / 2, "slope, across"}, Run{TerrainKind::Bumps, 0, "bumps"}}) {
     for (double speed : {1.0, 0.5}) {
       gaitlab::sim::WalkOptions o;
-      o.character = Kind::Biped;
+      o.character = Character::Biped;
       o.terrain = run.terrain;
       o.heading = run.heading;
       o.speed = speed;

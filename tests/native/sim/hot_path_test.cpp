@@ -36,7 +36,7 @@ void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, size_t) noexcept { std::free(p); }
 
 using gaitlab::sim::Crowd;
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Mode;
 using gaitlab::sim::Simulation;
 

@@ -11,7 +11,7 @@
 #include "sim/simulation.h"
 
 using gaitlab::sim::IdPool;
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Simulation;
 
 TEST(IdPool, FreshIdsCountUpAndAFreedSlotComesBackWithANewGeneration) {
@@ -64,7 +64,7 @@ TEST(CharacterIds, RemovingAndAddingNeverGivesAnOldIdToANewCharacter) {
     const int box = sim.throwBox({0, 2, 0}, {0, 0, 1}, 0.1);
     ASSERT_GE(box, 0);
     EXPECT_TRUE(given.insert(box).second) << "box id " << box << " given before";
-    const int fresh = sim.spawn(round % 2 ? Kind::Biped : Kind::Quadruped, 10.0 + round, 0, 0);
+    const int fresh = sim.spawn(round % 2 ? Character::Biped : Character::Quadruped, 10.0 + round, 0, 0);
     ASSERT_GE(fresh, 0);
     EXPECT_TRUE(given.insert(fresh).second) << "character id " << fresh << " given before";
     EXPECT_EQ(sim.idOf(sim.indexOf(fresh)), fresh);
@@ -110,7 +110,7 @@ TEST(CharacterIds, ACharacterKeepsItsIdThroughResetsAndOthersRemovals) {
   EXPECT_EQ(sim.indexOf(1), 0);
   EXPECT_EQ(sim.indexOf(3), 1);
   EXPECT_EQ(sim.indexOf(4), 2);
-  EXPECT_EQ(sim.kindOf(sim.indexOf(3)), Kind::Quadruped);
-  EXPECT_EQ(sim.kindOf(sim.indexOf(4)), Kind::Biped);
+  EXPECT_EQ(sim.kindOf(sim.indexOf(3)), Character::Quadruped);
+  EXPECT_EQ(sim.kindOf(sim.indexOf(4)), Character::Biped);
   for (int i = 0; i < sim.characterCount(); ++i) EXPECT_EQ(sim.indexOf(sim.idOf(i)), i);
 }

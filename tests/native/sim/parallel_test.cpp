@@ -13,7 +13,7 @@
 #include "sim/thread_pool.h"
 
 using gaitlab::sim::Crowd;
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Mode;
 using gaitlab::sim::Range;
 using gaitlab::sim::Simulation;
@@ -109,7 +109,7 @@ TEST(Modes, TheBenchmarkCrowdWalksOutOfStep) {
     EXPECT_EQ(phases.size(), 16u) << "every character starts at its own phase";
     constexpr double kSeconds = 10;
     sim.step(static_cast<int>(kSeconds * 120));
-    const double cruise = Simulation::cruiseSpeed(crowd == Crowd::Bipeds ? Kind::Biped : Kind::Quadruped);
+    const double cruise = Simulation::cruiseSpeed(crowd == Crowd::Bipeds ? Character::Biped : Character::Quadruped);
     for (int i = 0; i < sim.characterCount(); ++i) {
       EXPECT_FALSE(sim.fallen(i)) << "character " << i;
       const double speed = (sim.character(i).segmentState(0).position.z() - startZ[i]) / kSeconds;
@@ -126,8 +126,8 @@ TEST(Modes, SameStateHashForEveryModeAndThreadCount) {
     for (int threads = 1; threads <= 4; ++threads) {
       Simulation sim(threads, 9, 3);
       sim.crowdScene(Crowd::Mixed, 7, 2.5);
-      sim.spawn(Kind::Box, 1.0, 0.5, 0.3);
-      sim.spawn(Kind::Box, -2.0, 1.5, 1.1);
+      sim.spawnBox(1.0, 0.5, 0.3);
+      sim.spawnBox(-2.0, 1.5, 1.1);
       sim.setMode(mode);
       sim.step(90);
       const std::string h = sim.stateHash();

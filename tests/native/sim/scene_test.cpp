@@ -13,7 +13,7 @@
 #include "sim/simulation.h"
 
 using gaitlab::sim::Crowd;
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Mode;
 using gaitlab::sim::Place;
 using gaitlab::sim::SceneLayout;
@@ -185,8 +185,8 @@ std::string replayThroughTheCAbi(int threads, uint32_t seed) {
 std::string replayThroughTheCppApi(int threads, uint32_t seed, Mode mode) {
   Simulation sim(threads, seed);
   sim.setMode(mode);
-  gaitlab::gait::Goal lastGoal[2] = {{Simulation::cruiseSpeed(Kind::Biped), 0},
-                                     {Simulation::cruiseSpeed(Kind::Quadruped), 0}};
+  gaitlab::gait::Goal lastGoal[2] = {{Simulation::cruiseSpeed(Character::Biped), 0},
+                                     {Simulation::cruiseSpeed(Character::Quadruped), 0}};
   const auto add = [&](Crowd crowd, int count) {
     const int added = sim.addCharacters(crowd, count);
     for (int i = sim.characterCount() - added; i < sim.characterCount(); ++i)

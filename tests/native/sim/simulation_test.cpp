@@ -7,7 +7,7 @@
 #include "api/c_api.h"
 #include "sim/simulation.h"
 
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::Simulation;
 
 TEST(Simulation, FiguresFallAndComeToRestOnTheGround) {
@@ -31,7 +31,7 @@ TEST(Simulation, FiguresFallAndComeToRestOnTheGround) {
 
 TEST(Simulation, RenderBufferPublishesTheNewestFrame) {
   Simulation sim(1, 3);
-  sim.spawn(Kind::Box, 0, 0, 0);
+  sim.spawnBox(0, 0, 0);
   const gaitlab::RenderHeader* h = sim.renderBuffer();
   const uint32_t seq0 = h->seq.load();
   sim.step(60);

@@ -9,7 +9,7 @@
 #include "sim/simulation.h"
 #include "sim/walk_trial.h"
 
-using gaitlab::sim::Kind;
+using gaitlab::gait::Character;
 using gaitlab::sim::runWalk;
 using gaitlab::sim::Simulation;
 using gaitlab::sim::WalkOptions;
@@ -17,14 +17,14 @@ using gaitlab::sim::WalkOptions;
 namespace {
 
 struct Case {
-  Kind character;
+  Character character;
   double speed;
 };
 
 class Walking : public testing::TestWithParam<Case> {};
 
 std::string caseName(const testing::TestParamInfo<Case>& info) {
-  return std::string(info.param.character == Kind::Biped ? "biped" : "quadruped") + "_at_" +
+  return std::string(info.param.character == Character::Biped ? "biped" : "quadruped") + "_at_" +
          std::to_string(static_cast<int>(std::lround(info.param.speed * 100))) + "cm_s";
 }
 
@@ -46,8 +46,8 @@ TEST_P(Walking, ThePresetMeetsTheWalkingCriteria) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, Walking,
-                         testing::Values(Case{Kind::Biped, 0.5}, Case{Kind::Biped, 1.0},
-                                         Case{Kind::Quadruped, 0.4}, Case{Kind::Quadruped, 0.8}),
+                         testing::Values(Case{Character::Biped, 0.5}, Case{Character::Biped, 1.0},
+                                         Case{Character::Quadruped, 0.4}, Case{Character::Quadruped, 0.8}),
                          caseName);
 
 // The stance legs' virtual force F_v = K_v (v_d − v) must move the leg frame towards the goal
@@ -57,7 +57,7 @@ INSTANTIATE_TEST_SUITE_P(Presets, Walking,
 // the faster the larger K_v.
 TEST(StanceLeg, VelocityForceMovesTheLegFrameForwards) {
   Simulation sim(1, 1);
-  sim.spawn(Kind::Biped, 0, 0, 0);
+  sim.spawn(Character::Biped, 0, 0, 0);
   gaitlab::gait::GaitParams p = sim.controller(0).params();
   for (auto& leg : p.legs) leg.dutyFactor = 1.0;  // clamped to the player's maximum
   p.legFrames[0].velocityGain = 300;
@@ -76,7 +76,7 @@ TEST(StanceLeg, VelocityForceMovesTheLegFrameForwards) {
 // parallelogram with no horizontal stiffness, which drifted backwards and folded within 2–3 s.
 TEST(BodyStance, TheQuadrupedStandsOnFourFeet) {
   Simulation sim(1, 1);
-  sim.spawn(Kind::Quadruped, 0, 0, 0);
+  sim.spawn(Character::Quadruped, 0, 0, 0);
   // The gains of the §10 trot (a schema-1 file, migrated on load). The shipped trot's leg frames
   // keep only a weak orientation PD (k_p 65 and 10 N·m/rad): its balance is in its foot
   // placement, and with its feet planted it creeps sideways and tips over after 8 s
@@ -106,7 +106,7 @@ TEST(BodyStance, TheQuadrupedStandsOnFourFeet) {
 // whole body F_v, eq. 3.6).
 TEST(BodyStance, VelocityForceMovesTheQuadrupedForwards) {
   Simulation sim(1, 1);
-  sim.spawn(Kind::Quadruped, 0, 0, 0);
+  sim.spawn(Character::Quadruped, 0, 0, 0);
   gaitlab::gait::GaitParams p = sim.controller(0).params();
   for (auto& leg : p.legs) leg.dutyFactor = 1.0;
   sim.controller(0).setParams(p);
@@ -125,7 +125,7 @@ TEST(BodyStance, VelocityForceMovesTheQuadrupedForwards) {
 TEST(SwingLeg, FollowingTheTargetsVelocityKeepsTheDutyFactor) {
   const auto largestShortfall = [](double rate) {
     Simulation sim(1, 1);
-    sim.spawn(Kind::Quadruped, 0, 0, 0);
+    sim.spawn(Character::Quadruped, 0, 0, 0);
     gaitlab::gait::GaitParams p = sim.controller(0).params();
     p.gains.swingTargetRate = rate;
     sim.controller(0).setParams(p);
@@ -152,7 +152,7 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
       gaitlab::gait::Character::Quadruped, &walk);
   ASSERT_FALSE(error) << error->describe();
   WalkOptions o;
-  o.character = Kind::Quadruped;
+  o.character = Character::Quadruped;
   o.params = &walk.params;
   o.speed = 0.3;
   o.seconds = 20;
@@ -161,7 +161,7 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
   EXPECT_NEAR(r.meanSpeed, o.speed, 0.15 * o.speed);
 
   Simulation sim(1, 1);
-  sim.spawn(Kind::Quadruped, 0, 0, 0);
+  sim.spawn(Character::Quadruped, 0, 0, 0);
   const gaitlab::gait::GaitParams trot = sim.controller(0).params();
   double z = sim.character(0).segmentState(0).position.z();
   for (int part = 0; part < 4; ++part) {

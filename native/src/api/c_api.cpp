@@ -18,6 +18,8 @@
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
 #include "optimize/settings.h"
+#include "peers/morphology_json.h"
+#include "peers/reference_scene.h"
 #include "sim/simulation.h"
 
 using gaitlab::api::SimHandle;
@@ -468,6 +470,37 @@ const char* gl_bench_point(const gl_bench_settings* b) {
   s.frames = b->frames != 0;
   point = gaitlab::api::benchJsonPoint(gaitlab::sim::runPoint(s)).dump();
   return point.c_str();
+}
+
+// ---- The peer benchmark's reference scene ---------------------------------------------------
+
+const char* gl_morphology_json(int kind) {
+  static const std::string biped = gaitlab::peers::morphologyJson(Character::Biped);
+  static const std::string quadruped = gaitlab::peers::morphologyJson(Character::Quadruped);
+  if (kind == GL_KIND_BIPED) return biped.c_str();
+  if (kind == GL_KIND_QUADRUPED) return quadruped.c_str();
+  return refuse<const char*>(nullptr, notACharacter(kind));
+}
+
+void* gl_peer_scene_create(int kind, int characters, int threads) {
+  Character c;
+  if (!characterKind(kind, &c)) return refuse<void*>(nullptr, notACharacter(kind));
+  if (characters < 1 || characters > gaitlab::peers::kMaxCharacters)
+    return refuse<void*>(nullptr, "characters: " + str(characters) + " is outside [1, " +
+                                      str(gaitlab::peers::kMaxCharacters) + "]");
+  return new gaitlab::peers::ReferenceScene(c, characters, clampThreads(threads));
+}
+
+void gl_peer_scene_destroy(void* scene) { delete static_cast<gaitlab::peers::ReferenceScene*>(scene); }
+
+int gl_peer_scene_step(void* scene, int steps) {
+  if (steps < 0) return refuse(GL_ERR_ARGUMENT, "steps: " + str(steps) + " is negative");
+  static_cast<gaitlab::peers::ReferenceScene*>(scene)->step(steps);
+  return GL_OK;
+}
+
+double gl_peer_scene_root_height(void* scene) {
+  return static_cast<gaitlab::peers::ReferenceScene*>(scene)->meanRootHeight();
 }
 
 }  // extern "C"

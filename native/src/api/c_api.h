@@ -21,7 +21,7 @@
 //              as the function says.
 //   Strings.   Returned strings are owned by the library, UTF-8, NUL-terminated. Their lifetime:
 //              - strings that never change (gl_version, gl_schema_json, gl_preset_json,
-//                gl_opt_settings_json, gl_bench_machine) are static: valid for the module's
+//                gl_opt_settings_json, gl_bench_machine, gl_morphology_json) are static: valid for the module's
 //                lifetime, the same pointer every call;
 //              - a simulation's strings (gl_sim_state_hash, gl_sim_get_params) live in that
 //                simulation: valid until the next of those two calls on the same simulation, or
@@ -356,6 +356,22 @@ GL_EXPORT void gl_bench_defaults(gl_bench_settings* settings);
 // range, more characters than gl_bench_max_characters included). Valid until the next
 // gl_bench_point on the same thread.
 GL_EXPORT const char* gl_bench_point(const gl_bench_settings* settings);
+
+// ---- The peer benchmark's reference scene (native/src/peers/reference_scene.h) -------------
+// Ragdolls of one character type holding their standing pose with motors, ground-only contact,
+// no controller: the physics alone, for timing side by side with another engine.
+
+// The morphology of GL_KIND_BIPED or GL_KIND_QUADRUPED as JSON (peers/morphology_json.h), for
+// another engine to build the same ragdoll; static. NULL for another kind.
+GL_EXPORT const char* gl_morphology_json(int kind);
+// `characters` (1 to 1000) ragdolls of `kind` on the crowd benchmark's grid, stepped by `threads`
+// threads (clamped to [1, GL_MAX_THREADS]). NULL on refusal.
+GL_EXPORT void* gl_peer_scene_create(int kind, int characters, int threads);
+GL_EXPORT void gl_peer_scene_destroy(void* scene);
+// `steps` (>= 0) fixed steps of 1/120 s. GL_OK, or GL_ERR_ARGUMENT.
+GL_EXPORT int gl_peer_scene_step(void* scene, int steps);
+// Mean height of the ragdolls' root segments, m (never fails).
+GL_EXPORT double gl_peer_scene_root_height(void* scene);
 
 #ifdef __cplusplus
 }  // extern "C"

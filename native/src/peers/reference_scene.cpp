@@ -1,0 +1,128 @@
+#include "peers/reference_scene.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gait/defaults.h"
+#include "gait/pd.h"
+#include "physics/fnv1a.h"
+#include "sim/scene_layout.h"
+
+namespace gaitlab::peers {
+
+std::vector<Motor> holdingMotors(gait::Character character) {
+  const body::Morphology m = character == gait::Character::Biped ? body::makeBiped() : body::makeQuadruped();
+  const gait::JointGains g = gait::defaultParams(character).gains;
+  std::vector<Motor> motors(m.segments.size());
+  for (const body::Leg& leg : m.legs) {
+    motors[leg.upper] = {g.hipKp, g.hipKd};
+    motors[leg.lower] = {g.kneeKp, g.kneeKd};
+    // The stance ankle's gains; a preset that leaves the stance ankle free (the quadruped's paws)
+    // holds the foot with its swing ankle's.
+    motors[leg.foot] = g.stanceAnkleKp > 0 ? Motor{g.stanceAnkleKp, g.stanceAnkleKd} : Motor{g.ankleKp, g.ankleKd};
+  }
+  for (int s : m.spine)
+    if (m.segments[s].parent >= 0) motors[s] = {g.spineKp, g.spineKd};
+  for (int s : m.legFrames)
+    if (m.segments[s].parent >= 0) motors[s] = {g.spineKp, g.spineKd};
+  return motors;
+}
+
+ReferenceScene::ReferenceScene(gait::Character character, int characters, int threads, int shards,
+                               double spacing)
+    : morphology_(character == gait::Character::Biped ? body::makeBiped() : body::makeQuadruped()),
+      pool_(threads < 1 ? 1 : threads) {
+  const int worlds = shards > 0 ? shards : pool_.size();
+  motors_ = holdingMotors(character);
+  const int pool = worlds == 1 ? physics::World::kDefaultContactPool
+                               : std::max(256, physics::World::kDefaultContactPool / worlds);
+  for (int w = 0; w < worlds; ++w) worlds_.push_back(std::make_unique<physics::World>(pool));
+  byWorld_.resize(worlds);
+  for (int i = 0; i < characters; ++i) {
+    // Contiguous chunks of the grid per world, as the crowd benchmark's shards (thesis §4.3).
+    int w = 0;
+    while (w + 1 < worlds && i >= sim::ThreadPool::chunk(characters, worlds, w).end) ++w;
+    const sim::Place p = sim::benchmarkPlace(i, characters, spacing);
+    ragdolls_.push_back({std::make_unique<physics::Character>(*worlds_[w], morphology_,
+                                                              Eigen::Vector3d(p.x, 0, p.z), p.heading),
+                         w});
+    byWorld_[w].push_back(i);
+  }
+  for (auto& world : worlds_) world->reserve();
+}
+
+ReferenceScene::~ReferenceScene() {
+  ragdolls_.clear();  // constraints and bodies leave the worlds before they are destroyed
+}
+
+void ReferenceScene::holdPose(const Ragdoll& r, std::vector<gait::BodyState>* state,
+                              std::vector<Eigen::Vector3d>* torques) const {
+  r.body->readState(state->data());
+  const int n = static_cast<int>(morphology_.segments.size());
+  for (int s = 0; s < n; ++s) {
+    const int parent = morphology_.segments[s].parent;
+    if (parent < 0) {
+      (*torques)[s].setZero();
+      continue;
+    }
+    // The rest pose has every segment unrotated (body/morphology.h): the target of each joint is
+    // the identity relative rotation.
+    const gait::BodyState& a = (*state)[parent];
+    const gait::BodyState& b = (*state)[s];
+    (*torques)[s] = gait::jointPd(motors_[s].kp, motors_[s].kd, a.orientation, b.orientation,
+                                  Eigen::Quaterniond::Identity(), a.angularVelocity, b.angularVelocity);
+  }
+  r.body->applyJointTorques(torques->data());
+}
+
+void ReferenceScene::step(int steps) {
+  for (int k = 0; k < steps; ++k) {
+    // One world per thread; its characters' motors, then its sub-steps, all on that thread.
+    pool_.forEach(static_cast<int>(worlds_.size()), [&](int w) {
+      std::vector<gait::BodyState> state(morphology_.segments.size());
+      std::vector<Eigen::Vector3d> torques(morphology_.segments.size());
+      for (int i : byWorld_[w]) holdPose(ragdolls_[i], &state, &torques);
+      worlds_[w]->step();
+    });
+  }
+}
+
+double ReferenceScene::meanRootHeight() const {
+  if (ragdolls_.empty()) return 0;
+  double sum = 0;
+  for (const Ragdoll& r : ragdolls_) sum += r.body->segmentState(morphology_.legFrames[0]).position.y();
+  return sum / ragdolls_.size();
+}
+
+double ReferenceScene::largestPoseError() const {
+  double largest = 0;
+  for (const Ragdoll& r : ragdolls_) {
+    for (int s = 0; s < r.body->segmentCount(); ++s) {
+      const int parent = morphology_.segments[s].parent;
+      if (parent < 0) continue;
+      const Eigen::Quaterniond a = r.body->segmentState(parent).orientation, b = r.body->segmentState(s).orientation;
+      largest = std::max(largest, gait::rotationVector(a.conjugate() * b).norm());
+    }
+  }
+  return largest;
+}
+
+uint64_t ReferenceScene::hash() const {
+  Fnv1a h;
+  for (const Ragdoll& r : ragdolls_) {
+    for (int s = 0; s < r.body->segmentCount(); ++s) {
+      const btRigidBody* b = r.body->body(s);
+      const btTransform& t = b->getCenterOfMassTransform();
+      const btQuaternion q = t.getRotation();
+      const btScalar v[] = {t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z(), q.x(), q.y(), q.z(), q.w(),
+                            b->getLinearVelocity().x(), b->getLinearVelocity().y(), b->getLinearVelocity().z(),
+                            b->getAngularVelocity().x(), b->getAngularVelocity().y(), b->getAngularVelocity().z()};
+      h.bytes(v, sizeof(v));
+    }
+  }
+  return h.h;
+}
+
+}  // namespace gaitlab::peers

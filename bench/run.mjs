@@ -11,6 +11,9 @@
 //   node bench/run.mjs --only native,node,chromium   a subset of the runtimes
 //   node bench/run.mjs --out DIR  somewhere else than bench/results
 //   node bench/run.mjs --tiny     a few seconds per runtime: checks the pipeline (tests/wasm)
+//   node bench/run.mjs --peers    the peer benchmark instead (bench/peers.mjs: gaitlab's physics
+//                                 beside Jolt Physics on one reference scene); other arguments
+//                                 are passed on to it
 //   node bench/run.mjs --readme   also replace the README's measured block (between the
 //                                 <!-- bench:begin --> and <!-- bench:end --> markers) with this run's
 //
@@ -18,7 +21,7 @@
 // searched for by measurement beyond the grid (capacity probes: nextCapacityProbe in
 // bench/lib/analysis.mjs, up to MAX_PROBES crowd sizes per curve, until the largest crowd within
 // budget and the smallest over it are within 5 % of each other), not extrapolated.
-import { spawn } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -30,6 +33,11 @@ import { barChart, lineChart } from './lib/svg.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const args = process.argv.slice(2);
+if (args.includes('--peers')) {
+  const peers = path.join(path.dirname(fileURLToPath(import.meta.url)), 'peers.mjs');
+  const run = spawnSync(process.execPath, [peers, ...args.filter((a) => a !== '--peers')], { stdio: 'inherit' });
+  process.exit(run.status ?? 1);
+}
 const flag = (name) => args.includes(name);
 const value = (name, fallback) => (args.includes(name) ? args[args.indexOf(name) + 1] : fallback);
 

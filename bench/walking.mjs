@@ -133,6 +133,8 @@ const STARTS = [0, 0.02, -0.02, 0.05].flatMap((heading) => [0, 2, -2].map((push)
 let commit = 'unknown';
 try {
   commit = execFileSync('git', ['rev-parse', '--short', 'HEAD'], { cwd: root, encoding: 'utf8' }).trim();
+  const dirty = execFileSync('git', ['status', '--porcelain', '--untracked-files=no', 'native', 'public/presets'], { cwd: root, encoding: 'utf8' }).trim();
+  if (dirty) commit += ' + uncommitted changes';
 } catch { /* not a checkout */ }
 const stamp = { measured: new Date().toISOString(), commit, seconds };
 

@@ -112,6 +112,7 @@ class Controller {
   Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gravity_{0, -9.81, 0};
   double weight_ = 0;  // N, the whole character's
+  Eigen::Vector3d com_ = Eigen::Vector3d::Zero();  // centre of mass this step (swing placement)
 };
 
 }  // namespace gaitlab::gait

@@ -23,6 +23,12 @@ struct LegFrameParams {
   double footPlacementLead = 0;       // s: the nominal offset grows by v_d × this
   double stepSideways = 0;            // nominal foot offset from the leg frame's centre, m
   double stepForward = 0;             // m
+  // Inverted-pendulum foot placement at low speed (Coros et al. 2010; beyond the thesis): the
+  // strike point moves towards the capture point x + v·√(h/g) of the centre of mass, plus
+  // captureSideways to the leg's side, by capturePlacement × (1 − |v_d| / captureBlendSpeed).
+  double capturePlacement = 0;        // weight at v_d = 0, 0 = the thesis's placement only
+  double captureBlendSpeed = 0.5;     // m/s: from this desired speed up, the thesis's only
+  double captureSideways = 0.05;      // m
   double toeOffAngle = 0;             // foot pitch at lift-off, rad (+ = toes down)
   double strikeAngle = 0;             // foot pitch at strike, rad (− = toes up)
   double orientationKp = 0, orientationKd = 0;  // leg-frame orientation PD (§3.1.3)

@@ -63,6 +63,9 @@ struct JointGains {
 struct GaitParams {
   double period = 1;        // T, seconds (§3.1.1)
   double maxAcceleration = 1;  // m/s², bound on the desired-velocity ramp (§3.1.6)
+  // Speed tracking (beyond the thesis): the velocity F_v (eq. 3.6) aims at is v_d plus the
+  // integral of the speed error (v_d − v) at this rate, 1/s; 0 = F_v towards v_d as in the thesis.
+  double speedIntegralGain = 0;
   JointGains gains;
   LegFrameParams legFrames[kMaxLegFrames];
   LegParams legs[kMaxLegs];

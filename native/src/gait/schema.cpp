@@ -71,6 +71,11 @@ Table build(Character c) {
          "bound on how fast the desired velocity ramps towards the goal speed (§3.1.6)",
          proto.maxAcceleration);
 
+  scalar("speedIntegralGain", kStance, {0, 2}, "1/s",
+         "speed tracking: F_v aims at v_d plus the integral of the speed error (v_d − v) at this "
+         "rate, so the measured speed settles on the goal; 0: F_v towards v_d only (eq. 3.6)",
+         proto.speedIntegralGain);
+
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;
   scalar("gains.hipKp", kJointGains, biped ? Bounds{0, 1500} : Bounds{0, 400}, "N·m/rad",

@@ -66,7 +66,7 @@ if (!existsSync(cli)) {
 
 // Goal speeds per character, one twice the other, and turn commands: a 0.49 m tall dog walks
 // slower than a 1.8 m human (similar Froude numbers, v²/(g·leg length) ≈ 0.05–0.15).
-// `top`: the top of the speed range the controller issue asks of each (walk 1.6 m/s for the
+// `top`: the top of the speed range the locomotion criteria ask of each (walk 1.6 m/s for the
 // biped, trot 2.5 m/s for the quadruped); the sweep goes 0.4 m/s beyond it. `cruise`: the speed
 // of the walking push trials.
 const GOALS = {

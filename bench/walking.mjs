@@ -3,9 +3,26 @@
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
+//                          [--only criteria,sweep,ramp,pushes] [--jobs 2] [--step 0.1]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
-// gait file to measure instead of the preset: walking-<file name>.{json,md}). The walking criteria:
+// gait file to measure instead of the preset: walking-<file name>.{json,md}). With --only, the
+// sections run are measured afresh and merged into the results already there (each section says
+// when and at which commit it was measured), so one part can be re-measured while iterating.
+// --jobs runs that many `gaitlab walk` processes at once.
+//
+// Sections:
+//   - criteria: the walking criteria below;
+//   - sweep: goal speeds from 0 to beyond the top of the character's range in --step m/s steps,
+//     --seconds each: fell or not, measured speed, heading and position drift, duty factors,
+//     flight fraction (share of time with no foot down);
+//   - ramp: the goal from 0 up to the top speed and back to 0 over 60 s, then 20 s at 0: no fall,
+//     speed within ±10 % of the goal wherever the goal exceeds 0.3 m/s (after a lag of 1 s),
+//     standing drift under 0.1 m over the last 20 s;
+//   - pushes: the push ladder in three directions (lateral, forward, backward) at the leg frame,
+//     walking at the cruise speed and standing (goal 0): 20 pushes at random phases per impulse;
+//     the largest impulse survived every time and in ≥ 90 % of them.
+// The walking criteria:
 //   - 60 s on flat ground at two goal speeds, one twice the other, without a fall;
 //   - mean speed within ±15 % of the goal; heading drift under 10° walking straight;
 //   - with a turn command, yaw rate within ±20 % of it;
@@ -15,8 +32,8 @@
 //     across +z), the bumps on three bump fields (seeds); every one of those runs must not fall;
 //   - pushes: 20 lateral pushes at random phases per impulse, the largest impulse survived in at
 //     least 90 % of them.
-import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { execFile, execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -29,6 +46,16 @@ const opt = (name, fallback) => {
   return i >= 0 ? args[i + 1] : fallback;
 };
 const seconds = Number(opt('seconds', '60'));
+const jobs = Math.max(1, Number(opt('jobs', '2')));
+const sweepStep = Number(opt('step', '0.1'));
+const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes'];
+const only = opt('only', SECTIONS.join(',')).split(',');
+for (const s of only) {
+  if (!SECTIONS.includes(s)) {
+    console.error(`walking: --only ${s}: not one of ${SECTIONS.join(', ')}`);
+    process.exit(2);
+  }
+}
 const characters = opt('character', 'both') === 'both' ? ['biped', 'quadruped'] : [opt('character')];
 const withWasm = args.includes('--wasm');
 const paramsFile = opt('params', null);
@@ -39,12 +66,17 @@ if (!existsSync(cli)) {
 
 // Goal speeds per character, one twice the other, and turn commands: a 0.49 m tall dog walks
 // slower than a 1.8 m human (similar Froude numbers, v²/(g·leg length) ≈ 0.05–0.15).
+// `top`: the top of the speed range the locomotion criteria ask of each (walk 1.6 m/s for the
+// biped, trot 2.5 m/s for the quadruped); the sweep goes 0.4 m/s beyond it. `cruise`: the speed
+// of the walking push trials.
 const GOALS = {
-  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }] },
-  quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }] },
+  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }], top: 1.6, cruise: 0.5 },
+  quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }], top: 2.5, cruise: 0.4 },
 };
-const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 60, 80];  // N·s, lateral at the leg frame
+const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 60, 80];  // N·s at the leg frame
 const PUSH_EVERY = 2.5;                   // s: 20 pushes in 52 s
+const PUSH_DIRECTIONS = ['lateral', 'forward', 'backward'];
+const RAMP_SECONDS = 60, STAND_SECONDS = 20;
 
 function walk(character, extra, wasm = false) {
   const argv = ['walk', '--character', character, '--json', ...(paramsFile ? ['--params', paramsFile] : []), ...extra.map(String)];
@@ -52,6 +84,24 @@ function walk(character, extra, wasm = false) {
     ? execFileSync(process.execPath, [path.join(root, 'bench/wasm.mjs'), ...argv], { encoding: 'utf8' })
     : execFileSync(cli, argv, { encoding: 'utf8' });
   return JSON.parse(out);
+}
+
+// The same as walk(), as a promise, at most `jobs` at once.
+let running = 0;
+const waiting = [];
+function walkAsync(character, extra) {
+  const argv = ['walk', '--character', character, '--json', ...(paramsFile ? ['--params', paramsFile] : []), ...extra.map(String)];
+  return new Promise((resolve, reject) => {
+    const start = () => {
+      running++;
+      execFile(cli, argv, { encoding: 'utf8', maxBuffer: 1 << 26 }, (error, stdout) => {
+        running--;
+        if (waiting.length) waiting.shift()();
+        if (error) reject(error); else resolve(JSON.parse(stdout));
+      });
+    };
+    if (running < jobs) start(); else waiting.push(start);
+  });
 }
 
 function terrainSupported() {
@@ -80,39 +130,46 @@ const TERRAIN_RUNS = [
 // only may be balanced on a knife's edge; this counts how often it falls.
 const STARTS = [0, 0.02, -0.02, 0.05].flatMap((heading) => [0, 2, -2].map((push) => ({ heading, push })));
 
-const report = { machine: `${os.cpus()[0]?.model ?? 'unknown'}, ${os.cpus().length} cores`, seconds, characters: {} };
-const hasTerrain = terrainSupported();
-for (const character of characters) {
+let commit = 'unknown';
+try {
+  commit = execFileSync('git', ['rev-parse', '--short', 'HEAD'], { cwd: root, encoding: 'utf8' }).trim();
+  const dirty = execFileSync('git', ['status', '--porcelain', '--untracked-files=no', 'native', 'public/presets'], { cwd: root, encoding: 'utf8' }).trim();
+  if (dirty) commit += ' + uncommitted changes';
+} catch { /* not a checkout */ }
+const stamp = { measured: new Date().toISOString(), commit, seconds };
+
+const dir = path.join(root, 'bench/results');
+const base = paramsFile ? `walking-${path.basename(paramsFile, '.json')}` : 'walking';
+// Merge into what is there: the sections not run keep their figures.
+let report = { characters: {} };
+if (existsSync(path.join(dir, `${base}.json`))) {
+  try { report = JSON.parse(readFileSync(path.join(dir, `${base}.json`), 'utf8')); } catch { /* start afresh */ }
+}
+report.machine = `${os.cpus()[0]?.model ?? 'unknown'}, ${os.cpus().length} cores`;
+report.seconds = seconds;
+report.characters ??= {};
+const hasTerrain = only.includes('criteria') ? terrainSupported() : true;
+
+async function measureCriteria(character) {
   const { speeds: SPEEDS, turns: TURNS } = GOALS[character];
-  process.stderr.write(`${character}: straight walks\n`);
-  const straight = SPEEDS.map((speed) => walk(character, ['--speed', speed, '--seconds', seconds]));
-  process.stderr.write(`${character}: turns\n`);
-  const turns = TURNS.map((t) => walk(character, ['--speed', t.speed, '--turn', t.turn, '--seconds', seconds]));
-  process.stderr.write(`${character}: slope and bumps\n`);
-  const terrain = hasTerrain
-    ? SPEEDS.flatMap((speed) => TERRAIN_RUNS.map((run) => ({
+  process.stderr.write(`${character}: criteria (straight walks, turns, slope and bumps, starts)\n`);
+  const straightP = Promise.all(SPEEDS.map((speed) => walkAsync(character, ['--speed', speed, '--seconds', seconds])));
+  const turnsP = Promise.all(TURNS.map((t) => walkAsync(character, ['--speed', t.speed, '--turn', t.turn, '--seconds', seconds])));
+  const terrainP = hasTerrain
+    ? Promise.all(SPEEDS.flatMap((speed) => TERRAIN_RUNS.map(async (run) => ({
       name: run.terrain, start: run.label, speed,
-      ...walk(character, ['--speed', speed, '--terrain', run.terrain, '--seconds', TERRAIN_SECONDS, ...run.args]),
-    })))
+      ...await walkAsync(character, ['--speed', speed, '--terrain', run.terrain, '--seconds', TERRAIN_SECONDS, ...run.args]),
+    }))))
     : null;
-  process.stderr.write(`${character}: robustness over ${STARTS.length} starts\n`);
-  const robustness = hasTerrain
-    ? ['flat', 'slope', 'bumps'].flatMap((ground) => SPEEDS.map((speed) => {
-      const runs = STARTS.map((s) => walk(character, ['--speed', speed, '--terrain', ground, '--seconds', TERRAIN_SECONDS,
-        '--heading', s.heading, '--start-push-forward', s.push]));
+  const robustnessP = hasTerrain
+    ? Promise.all(['flat', 'slope', 'bumps'].flatMap((ground) => SPEEDS.map(async (speed) => {
+      const runs = await Promise.all(STARTS.map((s) => walkAsync(character, ['--speed', speed, '--terrain', ground, '--seconds', TERRAIN_SECONDS,
+        '--heading', s.heading, '--start-push-forward', s.push])));
       const times = runs.filter((r) => r.fell).map((r) => r.fall_time_s);
       return { ground, speed, starts: runs.length, fell: times.length, fall_times_s: times };
-    }))
+    })))
     : null;
-  const pushes = [];
-  for (const impulse of PUSHES) {
-    process.stderr.write(`${character}: pushes of ${impulse} N·s\n`);
-    const r = walk(character, ['--speed', SPEEDS[0], '--push-impulse', impulse, '--push-every', PUSH_EVERY,
-      '--seconds', 2 + 20 * PUSH_EVERY, '--seed', 7]);
-    // Pushes not applied because it fell earlier count as not survived.
-    pushes.push({ impulse, applied: r.pushes_applied, survived: r.pushes_survived, share: r.pushes_survived / 20, fell: r.fell });
-  }
-  const bestPush = pushes.filter((p) => p.share >= 0.9).reduce((m, p) => Math.max(m, p.impulse), 0);
+  const [straight, turns, terrain, robustness] = await Promise.all([straightP, turnsP, terrainP, robustnessP]);
   const wasm = withWasm ? walk(character, ['--speed', SPEEDS[0], '--seconds', 10], true) : null;
 
   const checks = [];
@@ -144,41 +201,154 @@ for (const character of characters) {
   } else {
     check('30 s on a ±5° slope and on 3 cm bumps', false, 'not built: --terrain offers flat ground only');
   }
-
-  report.characters[character] = {
-    straight, turns, terrain, robustness, pushes, largest_push_survived_90pct_n_s: bestPush, checks,
+  return {
+    ...stamp, straight, turns, terrain, robustness, checks,
     controller_us_per_step: { native: straight[0].controller_us_per_step, wasm_node: wasm?.controller_us_per_step ?? null },
     all_met: checks.every((c) => c.ok),
   };
 }
 
-if (paramsFile) report.params = paramsFile;
-const lines = [`# Walking benchmark (${seconds} s runs, ${report.machine}${paramsFile ? `, gait ${paramsFile}` : ''})`, ''];
-for (const [character, r] of Object.entries(report.characters)) {
-  const SPEEDS = GOALS[character].speeds;
-  lines.push(`## ${character}: ${r.all_met ? 'every criterion met' : 'criteria not all met'}`, '', '| criterion | met | measured |', '|---|---|---|');
-  for (const c of r.checks) lines.push(`| ${c.what} | ${c.ok ? 'yes' : '**no**'} | ${c.value} |`);
-  lines.push('', `Pushes (lateral, 20 at random phases, walking at ${SPEEDS[0]} m/s): ` +
-    r.pushes.map((p) => `${p.impulse} N·s ${p.survived}/20`).join(', ') +
-    `; largest survived in ≥90 %: ${r.largest_push_survived_90pct_n_s || 'none of those tried'} N·s.`);
-  if (r.robustness) {
-    lines.push('', `Falls within ${TERRAIN_SECONDS} s from ${STARTS.length} starts (heading 0, ±0.02, 0.05 rad × push 0, ±2 N·s forward at t = 0):`, '',
-      '| ground | ' + SPEEDS.map((v) => `${v} m/s`).join(' | ') + ' |', '|---|' + SPEEDS.map(() => '---|').join(''));
-    for (const ground of ['flat', 'slope', 'bumps']) {
-      const cells = SPEEDS.map((v) => {
-        const x = r.robustness.find((q) => q.ground === ground && q.speed === v);
-        return x.fell ? `${x.fell}/${x.starts} fell (${Math.min(...x.fall_times_s).toFixed(1)}–${Math.max(...x.fall_times_s).toFixed(1)} s)` : `0/${x.starts} fell`;
-      });
-      lines.push(`| ${ground} | ${cells.join(' | ')} |`);
-    }
+// The speed sweep: one run per goal speed.
+async function measureSweep(character) {
+  const { top } = GOALS[character];
+  const goals = [];
+  for (let k = 0; k * sweepStep <= top + 0.4 + 1e-9; k++) goals.push(Math.round(k * sweepStep * 100) / 100);
+  process.stderr.write(`${character}: sweep over ${goals.length} goal speeds, ${seconds} s each\n`);
+  const runs = await Promise.all(goals.map((goal) => walkAsync(character, ['--speed', goal, '--seconds', seconds])));
+  const rows = runs.map((r, i) => ({
+    goal: goals[i], fell: r.fell, fall_time_s: r.fall_time_s, mean_speed_m_s: r.mean_speed_m_s,
+    heading_drift_deg: r.heading_drift_deg, position_drift_m: r.position_drift_m,
+    duty_factor_measured: r.duty_factor_measured, duty_factor_config: r.duty_factor_config,
+    flight_fraction: r.flight_fraction, gait: paramsFile ? path.basename(paramsFile, '.json') : 'preset',
+  }));
+  // Top speed walked: the highest goal up to which every goal walked the whole run without a fall.
+  let topWalked = null;
+  for (const r of rows) {
+    if (r.fell) break;
+    topWalked = r.goal;
   }
-  lines.push('', `Controller: ${r.controller_us_per_step.native.toFixed(2)} µs per step native` +
-    (r.controller_us_per_step.wasm_node ? `, ${r.controller_us_per_step.wasm_node.toFixed(2)} µs WASM in Node` : '') + '.', '');
+  // Tracked: no fall and the mean speed within ±10 % of the goal (goals above 0.3 m/s).
+  const tracked = rows.filter((r) => r.goal > 0.3 && !r.fell && Math.abs(r.mean_speed_m_s - r.goal) <= 0.1 * r.goal).map((r) => r.goal);
+  return { ...stamp, step: sweepStep, rows, top_without_fall_m_s: topWalked, tracked_within_10pct: tracked };
+}
+
+// The ramp: 0 → top → 0 over 60 s, then standing.
+async function measureRamp(character) {
+  const { top } = GOALS[character];
+  const schedule = `0:0,${RAMP_SECONDS / 2}:${top},${RAMP_SECONDS}:0`;
+  process.stderr.write(`${character}: ramp 0 → ${top} → 0 m/s over ${RAMP_SECONDS} s, then ${STAND_SECONDS} s standing\n`);
+  const r = await walkAsync(character, ['--speed-schedule', schedule, '--seconds', RAMP_SECONDS + STAND_SECONDS,
+    '--drift-window', STAND_SECONDS]);
+  const within = r.tracking.samples ? r.tracking.within_10pct / r.tracking.samples : 0;
+  const checks = [
+    { what: 'ramp: no fall', ok: !r.fell, value: r.fell ? `fell at ${r.fall_time_s.toFixed(1)} s` : 'no fall' },
+    { what: 'ramp: speed within ±10 % of the goal where the goal > 0.3 m/s (1 s lag)', ok: !r.fell && within === 1,
+      value: `${r.tracking.within_10pct}/${r.tracking.samples} samples; worst ${(100 * r.tracking.worst_relative_error).toFixed(0)} %` },
+    { what: `ramp: standing drift under 0.1 m over the last ${STAND_SECONDS} s`, ok: !r.fell && r.position_drift_m < 0.1,
+      value: `${r.position_drift_m.toFixed(3)} m` },
+  ];
+  return { ...stamp, schedule, fell: r.fell, fall_time_s: r.fall_time_s, tracking: r.tracking,
+    standing_drift_m: r.position_drift_m, checks };
+}
+
+// The push ladder: three directions, walking at the cruise speed and standing. The ladder
+// stops climbing after a rung where none of the 20 pushes was survived.
+async function measurePushes(character) {
+  const { cruise } = GOALS[character];
+  const ladders = await Promise.all(PUSH_DIRECTIONS.flatMap((direction) => [cruise, 0].map(async (speed) => {
+    const rungs = [];
+    for (const impulse of PUSHES) {
+      process.stderr.write(`${character}: ${direction} pushes of ${impulse} N·s at ${speed} m/s\n`);
+      const r = await walkAsync(character, ['--speed', speed, '--push-impulse', impulse, '--push-every', PUSH_EVERY,
+        '--push-direction', direction, '--seconds', 2 + 20 * PUSH_EVERY, '--seed', 7]);
+      // Pushes not applied because it fell earlier count as not survived.
+      rungs.push({ impulse, applied: r.pushes_applied, survived: r.pushes_survived, share: r.pushes_survived / 20, fell: r.fell });
+      if (r.pushes_survived === 0) break;
+    }
+    let all = 0;
+    for (const p of rungs) {
+      if (p.survived < 20) break;
+      all = p.impulse;
+    }
+    const most = rungs.filter((p) => p.share >= 0.9).reduce((m, p) => Math.max(m, p.impulse), 0);
+    return { direction, speed, rungs, largest_every_time_n_s: all, largest_90pct_n_s: most };
+  })));
+  return { ...stamp, ladders };
+}
+
+for (const character of characters) {
+  const r = (report.characters[character] ??= {});
+  const measured = await Promise.all([
+    only.includes('criteria') ? measureCriteria(character) : null,
+    only.includes('sweep') ? measureSweep(character) : null,
+    only.includes('ramp') ? measureRamp(character) : null,
+    only.includes('pushes') ? measurePushes(character) : null,
+  ]);
+  SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
+  // Results of the previous layout (criteria at the top level) are not carried on.
+  for (const old of ['straight', 'turns', 'terrain', 'robustness', 'largest_push_survived_90pct_n_s', 'checks', 'controller_us_per_step', 'all_met']) delete r[old];
+  if (Array.isArray(r.pushes)) delete r.pushes;
+}
+
+if (paramsFile) report.params = paramsFile;
+const f2 = (x) => (x == null ? '–' : x.toFixed(2));
+const lines = [`# Walking benchmark (${report.machine}${paramsFile ? `, gait ${paramsFile}` : ''})`, ''];
+for (const [character, r] of Object.entries(report.characters)) {
+  const { speeds: SPEEDS } = GOALS[character];
+  lines.push(`## ${character}`, '');
+  const c = r.criteria;
+  if (c) {
+    lines.push(`### The walking criteria: ${c.all_met ? 'every criterion met' : 'criteria not all met'} (${c.seconds} s runs; ${c.measured.slice(0, 10)}, ${c.commit})`, '',
+      '| criterion | met | measured |', '|---|---|---|');
+    for (const k of c.checks) lines.push(`| ${k.what} | ${k.ok ? 'yes' : '**no**'} | ${k.value} |`);
+    if (c.robustness) {
+      lines.push('', `Falls within ${TERRAIN_SECONDS} s from ${STARTS.length} starts (heading 0, ±0.02, 0.05 rad × push 0, ±2 N·s forward at t = 0):`, '',
+        '| ground | ' + SPEEDS.map((v) => `${v} m/s`).join(' | ') + ' |', '|---|' + SPEEDS.map(() => '---|').join(''));
+      for (const ground of ['flat', 'slope', 'bumps']) {
+        const cells = SPEEDS.map((v) => {
+          const x = c.robustness.find((q) => q.ground === ground && q.speed === v);
+          return x.fell ? `${x.fell}/${x.starts} fell (${Math.min(...x.fall_times_s).toFixed(1)}–${Math.max(...x.fall_times_s).toFixed(1)} s)` : `0/${x.starts} fell`;
+        });
+        lines.push(`| ${ground} | ${cells.join(' | ')} |`);
+      }
+    }
+    lines.push('', `Controller: ${c.controller_us_per_step.native.toFixed(2)} µs per step native` +
+      (c.controller_us_per_step.wasm_node ? `, ${c.controller_us_per_step.wasm_node.toFixed(2)} µs WASM in Node` : '') + '.', '');
+  }
+  const sw = r.sweep;
+  if (sw) {
+    lines.push(`### Speed sweep (${sw.seconds} s per goal; ${sw.measured.slice(0, 10)}, ${sw.commit})`, '',
+      `Top goal walked without a fall (every goal up to it): ${sw.top_without_fall_m_s ?? 'none'} m/s; ` +
+      `goals above 0.3 m/s tracked within ±10 %: ${sw.tracked_within_10pct.length ? sw.tracked_within_10pct.join(', ') : 'none'}.`, '',
+      '| goal m/s | fell | speed m/s | heading drift ° | position drift m (2nd half) | duty measured/configured | flight |',
+      '|---|---|---|---|---|---|---|');
+    for (const x of sw.rows) {
+      lines.push(`| ${x.goal.toFixed(1)} | ${x.fell ? `at ${x.fall_time_s.toFixed(1)} s` : 'no'} | ${x.fell ? '–' : f2(x.mean_speed_m_s)} | ` +
+        `${x.heading_drift_deg.toFixed(1)} | ${f2(x.position_drift_m)} | ` +
+        `${x.duty_factor_measured.map((d, l) => `${d.toFixed(2)}/${x.duty_factor_config[l].toFixed(2)}`).join(' ')} | ${(100 * x.flight_fraction).toFixed(0)} % |`);
+    }
+    lines.push('');
+  }
+  const rp = r.ramp;
+  if (rp) {
+    lines.push(`### Ramp (goal ${rp.schedule}, then ${STAND_SECONDS} s at 0; ${rp.measured.slice(0, 10)}, ${rp.commit})`, '',
+      '| criterion | met | measured |', '|---|---|---|');
+    for (const k of rp.checks) lines.push(`| ${k.what} | ${k.ok ? 'yes' : '**no**'} | ${k.value} |`);
+    lines.push('');
+  }
+  const pu = r.pushes;
+  if (pu) {
+    lines.push(`### Push ladder (20 pushes at random phases per impulse, at the leg frame; ${pu.measured.slice(0, 10)}, ${pu.commit})`, '',
+      '| direction | goal m/s | survived every time | survived ≥ 90 % | rungs (N·s: survived/20) |', '|---|---|---|---|---|');
+    for (const l of pu.ladders) {
+      lines.push(`| ${l.direction} | ${l.speed} | ${l.largest_every_time_n_s || 'none'} N·s | ${l.largest_90pct_n_s || 'none'} N·s | ` +
+        `${l.rungs.map((p) => `${p.impulse}: ${p.survived}`).join(', ')} |`);
+    }
+    lines.push('');
+  }
 }
 const md = lines.join('\n');
-const dir = path.join(root, 'bench/results');
 mkdirSync(dir, { recursive: true });
-const base = paramsFile ? `walking-${path.basename(paramsFile, '.json')}` : 'walking';
 writeFileSync(path.join(dir, `${base}.json`), JSON.stringify(report, null, 2) + '\n');
 writeFileSync(path.join(dir, `${base}.md`), md + '\n');
 console.log(md);

@@ -1,6 +1,6 @@
 // The module as the page's only judge of gaits (gl_gait_normalize, gl_sim_patch_params), in the
 // WASM build under Node: every check a share link's or an imported file's gait gets — each bad
-// gait refused with the field named — the schema-1 -> 2 migration, and edits as patches refused
+// gait refused with the field named — the migration of older schema versions, and edits as patches refused
 // all or nothing with the parameter named. (The link codec itself, without the module, is
 // tests/web/share/link.test.ts.)
 import assert from 'node:assert/strict';
@@ -114,8 +114,8 @@ describe('gl_gait_normalize: the gait in a share link or an imported file', () =
     assert.match(normalize(text).error, /^not valid JSON: .*number overflow parsing '1e999'/);
   });
 
-  it('refuses a schema version newer than its own, and migrates a schema-1 gait to schema 2', () => {
-    assert.match(normalize(edited((g) => (g.version = 3))).error, /^version: expected 1 to 2, got 3/);
+  it('refuses a schema version newer than its own, and migrates a schema-1 gait to the current schema', () => {
+    assert.match(normalize(edited((g) => (g.version = 4))).error, /^version: expected 1 to 3, got 4/);
     const current = preset(KIND.biped);
     const old = edited((g) => {
       g.version = 1;
@@ -124,7 +124,7 @@ describe('gl_gait_normalize: the gait in a share link or an imported file', () =
     });
     const { gait, error } = normalize(old);
     assert.equal(error, undefined);
-    assert.equal(gait.version, 2);
+    assert.equal(gait.version, 3);
     assert.deepEqual(gait.params, { ...current.params, 'gains.swingTargetRate': 0 });
   });
 });

@@ -13,6 +13,7 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -55,8 +56,12 @@ const char* kUsage =
     "  --terrain flat|slope|bumps    ground (default flat): slope = ridges and valleys of ±5°\n"
     "                                across the walking direction, bumps = smooth random bumps\n"
     "                                of 2-3 cm every 0.5 m (drawn from --seed)\n"
-    "  --push-impulse N_S            lateral push at the leg frame (default 0: none)\n"
+    "  --push-impulse N_S            push at the leg frame (default 0: none)\n"
     "  --push-every S                seconds between pushes (default 4)\n"
+    "  --push-direction D            lateral (left or right at random, default), forward, backward\n"
+    "  --speed-schedule T:V,...      goal speed V m/s at time T s, linear between, held after the\n"
+    "                                last (replaces --speed; reports speed tracking)\n"
+    "  --drift-window S              position drift over the last S seconds (default: second half)\n"
     "  --seed N                      (default 1)\n"
     "  --trace                       include the leg frame's path every 0.1 s\n"
     "  --json                        print one JSON document\n"
@@ -113,7 +118,8 @@ int loadParamsOption(const std::string& path, std::optional<gait::Character> exp
 int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--speed", "--turn", "--heading", "--start-push-forward",
-             "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed"},
+             "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
+             "--push-direction", "--speed-schedule", "--drift-window"},
             {"--json", "--trace"});
   if (!o.error.empty()) return usageError(o.error);
   sim::WalkOptions w;
@@ -139,9 +145,30 @@ int walk(int argc, char** argv) {
       !o.number("--seconds", 0.01, 3600, 20.0, &w.seconds) ||
       !o.number("--push-impulse", 0, 10000, 0.0, &w.pushImpulse) ||
       !o.number("--push-every", 0.5, 3600, 4.0, &w.pushEvery) ||
-      !o.number("--seed", 0, 4294967295.0, 1, &seed))
+      !o.number("--seed", 0, 4294967295.0, 1, &seed) ||
+      !o.number("--drift-window", 0, 3600, 0.0, &w.driftWindow))
     return usageError(o.error);
   w.seed = static_cast<uint32_t>(seed);
+  const std::string direction = o.values.count("--push-direction") ? o.values["--push-direction"] : "lateral";
+  if (direction == "lateral") w.pushDirection = sim::PushDirection::Lateral;
+  else if (direction == "forward") w.pushDirection = sim::PushDirection::Forward;
+  else if (direction == "backward") w.pushDirection = sim::PushDirection::Backward;
+  else return usageError("--push-direction: '" + direction + "' is not lateral, forward or backward");
+  if (o.values.count("--speed-schedule")) {
+    // T:V pairs separated by commas, times increasing.
+    std::stringstream list(o.values["--speed-schedule"]);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      char* end = nullptr;
+      const double t = std::strtod(item.c_str(), &end);
+      const double v = *end == ':' ? std::strtod(end + 1, &end) : NAN;
+      if (*end != '\0' || !std::isfinite(t) || !std::isfinite(v) || std::abs(v) > 5 ||
+          (!w.speedSchedule.empty() && t <= w.speedSchedule.back().first))
+        return usageError("--speed-schedule: '" + item + "' is not T:V with T increasing and |V| <= 5");
+      w.speedSchedule.emplace_back(t, v);
+    }
+    if (w.speedSchedule.empty()) return usageError("--speed-schedule: no T:V pairs");
+  }
   w.trace = o.flags.count("--trace") > 0;
 
   const sim::WalkResult r = sim::runWalk(w);
@@ -164,10 +191,17 @@ int walk(int argc, char** argv) {
       {"pushes_applied", r.pushesApplied},
       {"pushes_survived", r.pushesSurvived},
       {"push_impulse_n_s", w.pushImpulse},
+      {"push_direction", direction},
+      {"position_drift_m", r.positionDrift},
+      {"flight_fraction", r.flightFraction},
       {"controller_us_per_step", r.controllerMicrosPerStep},
       {"seed", w.seed},
       {"state_hash", r.stateHash},
   };
+  if (!w.speedSchedule.empty()) {
+    out["tracking"] = {{"samples", r.trackingSamples}, {"within_10pct", r.trackingWithin},
+                       {"worst_relative_error", r.trackingWorst}};
+  }
   if (w.trace) out["trace"] = r.trace;
   if (o.flags.count("--json")) {
     std::printf("%s\n", out.dump().c_str());

@@ -112,6 +112,9 @@ class Controller {
   Eigen::Vector3d desiredVelocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d gravity_{0, -9.81, 0};
   double weight_ = 0;  // N, the whole character's
+  Eigen::Vector3d com_ = Eigen::Vector3d::Zero();  // centre of mass this step (swing placement)
+  double speedTrim_ = 0;  // m/s, speed tracking's correction of v_d in F_v (speedIntegralGain)
+  Eigen::Vector3d trimmedVelocity() const { return desiredVelocity_ + Eigen::Vector3d(0, 0, speedTrim_); }
 };
 
 }  // namespace gaitlab::gait

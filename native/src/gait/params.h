@@ -23,6 +23,12 @@ struct LegFrameParams {
   double footPlacementLead = 0;       // s: the nominal offset grows by v_d × this
   double stepSideways = 0;            // nominal foot offset from the leg frame's centre, m
   double stepForward = 0;             // m
+  // Inverted-pendulum foot placement at low speed (Coros et al. 2010; beyond the thesis): the
+  // strike point moves towards the capture point x + v·√(h/g) of the centre of mass, plus
+  // captureSideways to the leg's side, by capturePlacement × (1 − |v_d| / captureBlendSpeed).
+  double capturePlacement = 0;        // weight at v_d = 0, 0 = the thesis's placement only
+  double captureBlendSpeed = 0.5;     // m/s: from this desired speed up, the thesis's only
+  double captureSideways = 0.05;      // m
   double toeOffAngle = 0;             // foot pitch at lift-off, rad (+ = toes down)
   double strikeAngle = 0;             // foot pitch at strike, rad (− = toes up)
   double orientationKp = 0, orientationKd = 0;  // leg-frame orientation PD (§3.1.3)
@@ -57,6 +63,9 @@ struct JointGains {
 struct GaitParams {
   double period = 1;        // T, seconds (§3.1.1)
   double maxAcceleration = 1;  // m/s², bound on the desired-velocity ramp (§3.1.6)
+  // Speed tracking (beyond the thesis): the velocity F_v (eq. 3.6) aims at is v_d plus the
+  // integral of the speed error (v_d − v) at this rate, 1/s; 0 = F_v towards v_d as in the thesis.
+  double speedIntegralGain = 0;
   JointGains gains;
   LegFrameParams legFrames[kMaxLegFrames];
   LegParams legs[kMaxLegs];

@@ -97,6 +97,18 @@ void migrateParams(int version, json* params) {
     }
     if (!params->contains("gains.swingTargetRate")) (*params)["gains.swingTargetRate"] = 0.0;
   }
+  if (version < 3) {
+    // 3: inverted-pendulum foot placement at low speed (capturePlacement per leg frame; weight 0
+    // places the feet as version 2 did) and speed tracking (speedIntegralGain; 0 is F_v as before).
+    if (!params->contains("speedIntegralGain")) (*params)["speedIntegralGain"] = 0.0;
+    for (const char* frame : {"legFrame", "front", "back"}) {
+      const std::string weight = std::string(frame) + ".capturePlacement";
+      if (!params->contains(std::string(frame) + ".footPlacementScale") || params->contains(weight)) continue;
+      (*params)[weight] = 0.0;
+      (*params)[std::string(frame) + ".captureBlendSpeed"] = 0.5;
+      (*params)[std::string(frame) + ".captureSideways"] = 0.05;
+    }
+  }
 }
 
 }  // namespace

@@ -71,6 +71,11 @@ Table build(Character c) {
          "bound on how fast the desired velocity ramps towards the goal speed (§3.1.6)",
          proto.maxAcceleration);
 
+  scalar("speedIntegralGain", kStance, {0, 2}, "1/s",
+         "speed tracking: F_v aims at v_d plus the integral of the speed error (v_d − v) at this "
+         "rate, so the measured speed settles on the goal; 0: F_v towards v_d only (eq. 3.6)",
+         proto.speedIntegralGain);
+
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;
   scalar("gains.hipKp", kJointGains, biped ? Bounds{0, 1500} : Bounds{0, 400}, "N·m/rad",
@@ -170,6 +175,16 @@ Table build(Character c) {
            "nominal strike point's sideways offset from the leg frame's centre", f.stepSideways);
     scalar(n + "stepForward", kFootPlacement, {-0.3, 0.3}, "m",
            "nominal strike point's forward offset from the hip", f.stepForward);
+    scalar(n + "capturePlacement", kFootPlacement, {0, 1}, "1",
+           "at low speed the strike point moves this far (at v_d = 0) towards the centre of mass's "
+           "capture point x + v·√(h/g): the inverted-pendulum placement that stops the body over it "
+           "(Coros et al. 2010); 0: the thesis's placement only",
+           f.capturePlacement);
+    scalar(n + "captureBlendSpeed", kFootPlacement, {0.05, 3}, "m/s",
+           "desired speed at which the capture-point placement has faded out (linearly from v_d = 0)",
+           f.captureBlendSpeed);
+    scalar(n + "captureSideways", kFootPlacement, {0, 0.3}, "m",
+           "capture-point placement: the strike point's offset to the leg's side", f.captureSideways);
   }
 
   // ---- per leg (§3.3: step trigger, duty factor, foot take-off time, foot strike time) ----

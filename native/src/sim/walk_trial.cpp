@@ -2,6 +2,7 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gait/heading.h"
@@ -10,6 +11,32 @@ namespace gaitlab::sim {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+
+// Lowest corner of a segment's box above the ground under it, m.
+double clearance(const physics::Character& ch, const physics::World& world, int segment) {
+  const physics::SegmentState s = ch.segmentState(segment);
+  const Eigen::Vector3d& h = ch.morphology().segments[segment].halfExtents;
+  const Eigen::Matrix3d r = s.orientation.toRotationMatrix();
+  const double reach = std::abs(r(1, 0)) * h.x() + std::abs(r(1, 1)) * h.y() + std::abs(r(1, 2)) * h.z();
+  return s.position.y() - reach - world.terrainHeight(s.position.x(), s.position.z());
+}
+
+// A foot is on the ground within 1 cm, as the contact flags count it (World::updateContacts).
+constexpr double kContactGap = 0.01;
+}  // namespace
+
+double goalSpeedAt(const WalkOptions& o, double t) {
+  const auto& q = o.speedSchedule;
+  if (q.empty()) return o.speed;
+  if (t <= q.front().first) return q.front().second;
+  for (size_t i = 1; i < q.size(); ++i) {
+    if (t <= q[i].first) {
+      const double span = q[i].first - q[i - 1].first;
+      const double a = span > 0 ? (t - q[i - 1].first) / span : 1.0;
+      return q[i - 1].second + a * (q[i].second - q[i - 1].second);
+    }
+  }
+  return q.back().second;
 }
 
 bool hasFallen(const Simulation& sim, int c) {
@@ -30,21 +57,28 @@ bool hasFallen(const physics::Character& ch, const physics::World& world) {
 
 WalkResult runWalk(const WalkOptions& o) {
   WalkResult r;
-  r.goalSpeed = o.speed;
+  r.goalSpeed = goalSpeedAt(o, o.seconds);
   Simulation sim(1, o.seed);
   if (o.terrain != physics::TerrainKind::Flat) sim.setTerrain(o.terrain);
   sim.spawn(o.character, 0, 0, o.heading);
   if (o.params) sim.controller(0).setParams(*o.params);
-  sim.setGoal(0, {o.speed, o.turnRate});
+  sim.setGoal(0, {goalSpeedAt(o, 0.0), o.turnRate});
   const body::Morphology& m = sim.character(0).morphology();
   const int root = m.legFrames[0];
 
   const int steps = static_cast<int>(std::lround(o.seconds / physics::kFixedStep));
   const int half = steps / 2;
+  const int driftFrom = o.driftWindow > 0
+      ? std::max(0, steps - static_cast<int>(std::lround(o.driftWindow / physics::kFixedStep)))
+      : half;
+  int flightSteps = 0, secondHalfSteps = 0;
+  std::vector<Eigen::Vector3d> samples;  // the leg frame every 0.1 s, for speed tracking
+  const int legs = static_cast<int>(m.legs.size());
   const auto rootState = [&] { return sim.character(0).segmentState(root); };
   const Eigen::Vector3d start = rootState().position;
   const double startHeading = gait::headingOf(rootState().orientation);
   Eigen::Vector3d halfPos = start;
+  Eigen::Vector3d driftStart = start;  // where the drift window began (the start until then)
   double unwrapped = 0, lastHeading = startHeading, halfUnwrapped = 0;
   double nextPush = o.pushEvery > 0 && o.pushImpulse > 0 ? 2.0 : -1;
   double pushPending = -1;  // time of the last push still to be judged
@@ -65,14 +99,19 @@ WalkResult runWalk(const WalkOptions& o) {
 
   for (int step = 0; step < steps; ++step) {
     const double t = sim.time();
+    if (!o.speedSchedule.empty()) sim.setGoal(0, {goalSpeedAt(o, t), o.turnRate});
+    if (step == driftFrom) driftStart = rootState().position;
     if (nextPush >= 0 && t >= nextPush) {
-      // A lateral push (in the heading frame), left or right at random.
+      // A push in the heading frame: lateral (left or right at random), forward or backward.
       const physics::SegmentState s = rootState();
       const double h = gait::headingOf(s.orientation);
-      const Eigen::Vector3d left = gait::headingLeft(h) * (random() < 0.5 ? -1.0 : 1.0);
+      const double side = random() < 0.5 ? -1.0 : 1.0;
+      const Eigen::Vector3d dir = o.pushDirection == PushDirection::Lateral  ? gait::headingLeft(h) * side
+                                  : o.pushDirection == PushDirection::Forward ? gait::headingForward(h)
+                                                                              : -gait::headingForward(h);
       btRigidBody* b = sim.character(0).body(root);
-      b->applyCentralImpulse(btVector3(static_cast<btScalar>(left.x() * o.pushImpulse), 0,
-                                       static_cast<btScalar>(left.z() * o.pushImpulse)));
+      b->applyCentralImpulse(btVector3(static_cast<btScalar>(dir.x() * o.pushImpulse), 0,
+                                       static_cast<btScalar>(dir.z() * o.pushImpulse)));
       ++r.pushesApplied;
       pushPending = t;
       nextPush = t + o.pushEvery * (0.75 + 0.5 * random());  // random phase of the gait
@@ -86,6 +125,15 @@ WalkResult runWalk(const WalkOptions& o) {
       halfPos = s.position;
       halfUnwrapped = unwrapped;
     }
+    if (step + 1 >= half) {
+      ++secondHalfSteps;
+      bool airborne = true;
+      const physics::World& world = sim.world(sim.shardOf(0));
+      for (int l = 0; l < legs && airborne; ++l)
+        airborne = clearance(sim.character(0), world, m.legs[l].foot) > kContactGap;
+      if (airborne) ++flightSteps;
+    }
+    if ((step + 1) % 12 == 0) samples.push_back(s.position);
     if (o.trace && (step + 1) % 12 == 0) {
       r.trace.insert(r.trace.end(), {s.position.x(), s.position.y(), s.position.z(), h});
     }
@@ -116,6 +164,23 @@ WalkResult runWalk(const WalkOptions& o) {
     const double arc = std::abs(turned) > 1e-3 ? chord * (turned / 2) / std::sin(turned / 2) : chord;
     r.meanSpeed = std::abs(arc) / secondHalf;
     r.yawRate = turned / secondHalf;
+  }
+  const Eigen::Vector3d drift = end.position - (steps > driftFrom ? driftStart : end.position);
+  r.positionDrift = std::hypot(drift.x(), drift.z());
+  r.flightFraction = secondHalfSteps ? static_cast<double>(flightSteps) / secondHalfSteps : 0.0;
+  if (!o.speedSchedule.empty()) {
+    // Samples k at t = 0.1 (k + 1) s; the window [t − 2, t], its goal at t − 1 − 1 (lag).
+    for (size_t k = 20; k < samples.size(); ++k) {
+      const double tk = 0.1 * static_cast<double>(k + 1);
+      const double goal = goalSpeedAt(o, tk - 2.0);
+      if (goal <= 0.3) continue;
+      const Eigen::Vector3d d2 = samples[k] - samples[k - 20];
+      const double measured = std::hypot(d2.x(), d2.z()) / 2.0;
+      const double error = std::abs(measured - goal) / goal;
+      ++r.trackingSamples;
+      if (error <= 0.1) ++r.trackingWithin;
+      r.trackingWorst = std::max(r.trackingWorst, error);
+    }
   }
   r.headingDrift = std::abs(unwrapped - o.turnRate * elapsed) * 180.0 / kPi;
   const gait::GaitPlayer& player = sim.controller(0).player();

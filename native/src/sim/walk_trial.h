@@ -5,12 +5,16 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gait/params.h"
 #include "sim/simulation.h"
 
 namespace gaitlab::sim {
+
+// Which way the pushes go, in the heading frame at the moment of the push.
+enum class PushDirection { Lateral, Forward, Backward };
 
 struct WalkOptions {
   Character character = Character::Biped;
@@ -19,8 +23,14 @@ struct WalkOptions {
   double turnRate = 0.0;   // goal turn rate, rad/s
   double seconds = 20.0;   // simulated
   physics::TerrainKind terrain = physics::TerrainKind::Flat;  // the ground; bumps follow `seed`
-  double pushImpulse = 0.0;  // N·s, lateral, at the leg frame; 0 = no pushes
+  double pushImpulse = 0.0;  // N·s, at the leg frame; 0 = no pushes
   double pushEvery = 0.0;    // s between pushes (the first after 2 s); phase jittered by the seed
+  PushDirection pushDirection = PushDirection::Lateral;  // lateral: left or right at random
+  // A goal-speed schedule (the ramp trial): (time s, speed m/s) points, the goal linear between
+  // them and held after the last; empty = `speed` throughout. Times must increase.
+  std::vector<std::pair<double, double>> speedSchedule;
+  // Position drift is measured over the last `driftWindow` seconds (0: the second half).
+  double driftWindow = 0.0;
   uint32_t seed = 1;
   bool trace = false;  // record the leg frame's path every 0.1 s
   // Start state (the optimiser's "several start states"): the heading the character starts
@@ -43,6 +53,15 @@ struct WalkResult {
   double yawRate = 0;           // rad/s, mean over the second half
   std::vector<double> dutyMeasured, dutyConfig;
   int pushesApplied = 0, pushesSurvived = 0;
+  // Horizontal displacement of the leg frame over the drift window (standing: how far it crept).
+  double positionDrift = 0;     // m
+  // Share of the second half's steps with no foot on the ground (a run's flight phases).
+  double flightFraction = 0;
+  // Speed tracking (a schedule): the speed measured over a 2 s window against the goal at the
+  // window's centre 1 s earlier, wherever that goal exceeds 0.3 m/s (the controller issue's ramp
+  // criterion: within ±10 % after a lag of 1 s). Samples every 0.1 s.
+  int trackingSamples = 0, trackingWithin = 0;  // within ±10 %
+  double trackingWorst = 0;     // largest |measured − goal| / goal
   double controllerMicrosPerStep = 0;  // controller only, one character
   double seconds = 0;
   std::string stateHash;
@@ -51,6 +70,9 @@ struct WalkResult {
 };
 
 WalkResult runWalk(const WalkOptions& options);
+
+// The goal speed of `o` at time t (its schedule, or its constant speed).
+double goalSpeedAt(const WalkOptions& o, double t);
 
 // Fall criterion (controller issue): the leg frame below half its standing height above the
 // ground, or tilted more than 60° from upright.

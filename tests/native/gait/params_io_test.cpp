@@ -117,6 +117,27 @@ TEST(GaitFile, AVersion1FileIsMigrated) {
   EXPECT_EQ(error->field, "front.supportGain");
 }
 
+TEST(GaitFile, AVersion2FileIsMigrated) {
+  // Schema 3 added the low-speed capture-point placement per leg frame and speed tracking; weight
+  // and gain 0 walk as version 2 did, so a version-2 file loads as itself with both off.
+  json v3 = json::parse(presetText(Character::Biped));
+  json v2 = v3;
+  v2["version"] = 2;
+  for (const char* key : {"legFrame.capturePlacement", "legFrame.captureBlendSpeed", "legFrame.captureSideways",
+                          "speedIntegralGain"})
+    v2["params"].erase(key);
+  GaitFile migrated, current;
+  ASSERT_FALSE(parseGaitFile(v2.dump(), Character::Biped, &migrated));
+  v3["params"]["legFrame.capturePlacement"] = 0.0;
+  v3["params"]["legFrame.captureBlendSpeed"] = 0.5;
+  v3["params"]["legFrame.captureSideways"] = 0.05;
+  v3["params"]["speedIntegralGain"] = 0.0;
+  ASSERT_FALSE(parseGaitFile(v3.dump(), Character::Biped, &current));
+  EXPECT_TRUE(sameBits(migrated.params, current.params));
+  EXPECT_EQ(migrated.params.legFrames[0].capturePlacement, 0.0);
+  EXPECT_EQ(migrated.params.speedIntegralGain, 0.0);
+}
+
 TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
   const json preset = json::parse(presetText(Character::Biped), nullptr, false);
   ASSERT_FALSE(preset.is_discarded());

@@ -61,6 +61,7 @@ TEST(StanceLeg, VelocityForceMovesTheLegFrameForwards) {
   gaitlab::gait::GaitParams p = sim.controller(0).params();
   for (auto& leg : p.legs) leg.dutyFactor = 1.0;  // clamped to the player's maximum
   p.legFrames[0].velocityGain = 300;
+  p.maxAcceleration = 1.6;  // v_d reaches the goal within the 0.5 s (the preset's ramp is gentler)
   sim.controller(0).setParams(p);
   sim.setGoal(0, {0.5, 0.0});
   const double z0 = sim.character(0).segmentState(0).position.z();
@@ -176,4 +177,63 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
     EXPECT_GT(now - z, walking ? 0.8 : 2.0) << "part " << part << " of the run";
     z = now;
   }
+}
+
+// The walking benchmark's speed-range criteria, shortened (bench/walking.mjs: the sweep, the ramp
+// and the push ladder). Goal 0: the biped steps in place (the low-speed capture-point placement,
+// controller-notes §13) instead of walking on at 0.41 m/s.
+TEST(SpeedRange, TheBipedStepsInPlaceAtGoalZero) {
+  WalkOptions o;
+  o.character = Character::Biped;
+  o.speed = 0.0;
+  o.seconds = 20;
+  const auto r = runWalk(o);
+  ASSERT_FALSE(r.fell) << "fell after " << r.fallTime << " s";
+  EXPECT_LT(r.meanSpeed, 0.1);
+  EXPECT_LT(r.positionDrift, 1.0);  // over the second half, 10 s
+}
+
+// The goal ramps up to 1.3 m/s and back to 0: no fall, and the speed follows the goal.
+TEST(SpeedRange, TheBipedFollowsARampUpAndDown) {
+  WalkOptions o;
+  o.character = Character::Biped;
+  o.speedSchedule = {{0.0, 0.0}, {8.0, 1.3}, {16.0, 0.0}};
+  o.seconds = 20;
+  o.driftWindow = 2;  // from 18 s, 2 s after the goal reached 0
+  const auto r = runWalk(o);
+  ASSERT_FALSE(r.fell) << "fell after " << r.fallTime << " s";
+  ASSERT_GT(r.trackingSamples, 40);
+  // Measured 72 of 123: below 0.5 m/s the capture-point placement walks 30-40 % fast.
+  EXPECT_GE(r.trackingWithin, r.trackingSamples / 2);
+  EXPECT_LT(r.positionDrift, 0.2);                         // stopped: measured 0.05 m in 2 s
+}
+
+// Standing (goal 0), pushed forwards and backwards at 20 N·s: it steps to recover every time.
+TEST(SpeedRange, TheBipedRecoversFromPushesAtGoalZero) {
+  for (const auto direction : {gaitlab::sim::PushDirection::Forward, gaitlab::sim::PushDirection::Backward}) {
+    WalkOptions o;
+    o.character = Character::Biped;
+    o.speed = 0.0;
+    o.pushImpulse = 20;
+    o.pushEvery = 2.5;
+    o.pushDirection = direction;
+    o.seed = 7;
+    o.seconds = 14;
+    const auto r = runWalk(o);
+    EXPECT_FALSE(r.fell) << "fell after " << r.fallTime << " s";
+    EXPECT_EQ(r.pushesSurvived, r.pushesApplied);
+    EXPECT_GE(r.pushesApplied, 4);
+  }
+}
+
+// The goal schedule of the ramp trial: linear between its points, held before and after.
+TEST(WalkTrial, GoalScheduleInterpolates) {
+  WalkOptions o;
+  o.speed = 0.7;
+  EXPECT_EQ(gaitlab::sim::goalSpeedAt(o, 3.0), 0.7);
+  o.speedSchedule = {{1.0, 0.0}, {3.0, 1.0}, {4.0, 0.0}};
+  EXPECT_EQ(gaitlab::sim::goalSpeedAt(o, 0.0), 0.0);
+  EXPECT_DOUBLE_EQ(gaitlab::sim::goalSpeedAt(o, 2.0), 0.5);
+  EXPECT_DOUBLE_EQ(gaitlab::sim::goalSpeedAt(o, 3.5), 0.5);
+  EXPECT_EQ(gaitlab::sim::goalSpeedAt(o, 9.0), 0.0);
 }

@@ -170,6 +170,7 @@ installTestHook({
   },
   groundHeight: (x, z) => (stage?.terrain ? groundHeight(stage.terrain, x, z) : null),
   view: (from, to) => stage?.view(new THREE.Vector3(...from), new THREE.Vector3(...to)),
+  ownerAt: (x, y) => pointer?.ownerAt(x, y) ?? null,
   camera: () => ({
     distance: stage ? stage.camera.position.distanceTo(stage.controls.target) : 0,
     azimuth: stage ? stage.controls.getAzimuthalAngle() : 0,

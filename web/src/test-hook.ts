@@ -107,6 +107,8 @@ export interface GaitlabHook {
   bodies(): { owner: number; position: Vec3; matrix: number[] }[];
   /** The camera: its distance to the point it looks at (m) and its azimuth about +y (rad). */
   camera(): { distance: number; azimuth: number };
+  /** The owner of the body a click at (x, y) would pick (character id, −1 a prop), or null. */
+  ownerAt(x: number, y: number): number | null;
 }
 
 declare global {
@@ -140,6 +142,7 @@ export interface TestHookHost {
   view(from: Vec3, to: Vec3): void;
   bodies(): { owner: number; position: Vec3; matrix: number[] }[];
   camera(): { distance: number; azimuth: number };
+  ownerAt(x: number, y: number): number | null;
 }
 
 /** Installs `window.gaitlab`, frozen. */
@@ -184,6 +187,7 @@ export function installTestHook(host: TestHookHost): GaitlabHook {
     view: (from, to) => host.view(from, to),
     bodies: () => host.bodies(),
     camera: () => host.camera(),
+    ownerAt: (x, y) => host.ownerAt(x, y),
   };
   window.gaitlab = Object.freeze(hook);
   return hook;

@@ -55,6 +55,11 @@ export class PointerInteraction {
     return this.raycaster.ray;
   }
 
+  /** The owner of the body at a point of the page (CSS pixels; −1 a prop), or null: for tests. */
+  ownerAt(clientX: number, clientY: number): number | null {
+    return this.pickCharacter(this.ray({ clientX, clientY } as PointerEvent))?.owner ?? null;
+  }
+
   /** The character body under the pointer: its owner, segment index and the point hit. */
   private pickCharacter(ray: THREE.Ray) {
     const { array, count } = this.crowd.matrices();

@@ -142,10 +142,11 @@ export class Stage {
     const clamp = (inset: number) => Math.max(0, Math.min(inset, width / 3));
     const shift = clamp(this.rightInset) - clamp(this.leftInset);
     const wider = Math.abs(shift);
-    // The same vertically: a view `taller` higher, the canvas its top part.
+    // The same vertically: a view `taller` higher, extended upwards (the canvas its lower part),
+    // so that its centre sits taller/2 above the canvas's, in the middle of what the sheet leaves.
     const taller = Math.max(0, Math.min(this.bottomInset, height / 2));
     this.camera.aspect = (width + wider) / Math.max(1, height + taller);
-    if (wider > 0 || taller > 0) this.camera.setViewOffset(width + wider, height + taller, Math.max(0, shift), 0, width, height);
+    if (wider > 0 || taller > 0) this.camera.setViewOffset(width + wider, height + taller, Math.max(0, shift), taller, width, height);
     else this.camera.clearViewOffset();
     this.camera.updateProjectionMatrix();
   }

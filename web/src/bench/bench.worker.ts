@@ -93,7 +93,8 @@ async function capacityRun(command: Extract<BenchCommand, { type: 'capacity' }>)
     }, { most, start: legs === 2 ? 64 : 16 });
     // A probe skipped for time or a cancel counts as "over" in the search: not as a measurement.
     const over = result.over && Number.isFinite(result.over.stepMs) ? result.over : null;
-    post({ type: 'capacity', legs, within: result.within, over, seconds: (performance.now() - t0) / 1000 });
+    const stopped = result.over !== null && !Number.isFinite(result.over.stepMs);
+    post({ type: 'capacity', legs, within: result.within, over, seconds: (performance.now() - t0) / 1000, stopped });
     if (cancelled) break;
   }
   post({ type: 'done', cancelled });

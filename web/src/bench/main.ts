@@ -425,7 +425,7 @@ function measureCapacity(): void {
       a.value.textContent = String(e.within?.characters ?? 0);
       a.detail.textContent = [
         e.within ? `${e.within.stepMs.toFixed(2)} ms a step` : 'not even the smallest crowd tried fits',
-        e.over ? `${e.over.characters} took ${e.over.stepMs.toFixed(2)} ms` : 'the largest crowd tried fits',
+        e.over ? `${e.over.characters} took ${e.over.stepMs.toFixed(2)} ms` : e.stopped ? 'at least: the time limit ended the search' : 'the largest crowd tried fits',
         `measured in ${formatSeconds(e.seconds)}`,
       ].join(' · ');
       hook.capacity[e.legs === 2 ? 'biped' : 'quadruped'] = e.within?.characters ?? 0;

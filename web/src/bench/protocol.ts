@@ -44,8 +44,11 @@ export type BenchEvent =
   | { type: 'done'; cancelled: boolean }
   /** A crowd the capacity search measured: its mean whole step. */
   | { type: 'capacityProbe'; legs: 2 | 4; characters: number; stepMs: number }
-  /** A type's capacity: the largest crowd measured within 8.33 ms a step, and the smallest over. */
-  | { type: 'capacity'; legs: 2 | 4; within: { characters: number; stepMs: number } | null; over: { characters: number; stepMs: number } | null; seconds: number }
+  /**
+   * A type's capacity: the largest crowd measured within 8.33 ms a step, and the smallest over;
+   * `stopped` when the time limit (or a cancel) ended the search before it closed in.
+   */
+  | { type: 'capacity'; legs: 2 | 4; within: { characters: number; stepMs: number } | null; over: { characters: number; stepMs: number } | null; seconds: number; stopped: boolean }
   | { type: 'error'; message: string };
 
 /**

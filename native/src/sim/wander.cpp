@@ -50,15 +50,18 @@ double wanderTurnRate(const std::vector<WanderBody>& bodies, int self, double ar
   }
 
   // Separation: away from neighbours within `separation` that are ahead (a neighbour behind is
-  // walking into this one's back and turns itself), weighted by closeness.
+  // walking into this one's back and turns itself), weighted by closeness. The distance that
+  // counts as close shrinks with speed (a dog at 0.4 m/s needs 1 m, a person at 1 m/s 2.5 m): a
+  // slow walker that turned away from everything within 2.5 m would walk in circles.
+  const double reach = std::clamp(s.separation * std::abs(b.speed), 1.0, s.separation);
   double ax = 0, az = 0;
   for (int j = 0; j < static_cast<int>(bodies.size()); ++j) {
     if (j == self) continue;
     const double dx = bodies[j].x - b.x, dz = bodies[j].z - b.z;
     const double d = std::hypot(dx, dz);
-    if (d >= s.separation || d < 1e-9) continue;
+    if (d >= reach || d < 1e-9) continue;
     if (dx * fx + dz * fz <= 0) continue;  // behind
-    const double w = 1 - d / s.separation;
+    const double w = 1 - d / reach;
     ax -= dx / d * w;
     az -= dz / d * w;
   }
@@ -73,7 +76,9 @@ double wanderTurnRate(const std::vector<WanderBody>& bodies, int self, double ar
   const double w1 = 2 * kPi / (40 + 20 * idHash(b.id, 1)), w2 = 2 * kPi / (60 + 30 * idHash(b.id, 2));
   const double drift = 0.6 * std::sin(w1 * time + 2 * kPi * idHash(b.id, 3)) +
                        0.4 * std::sin(w2 * time + 2 * kPi * idHash(b.id, 4));
-  const double wander = s.wanderShare * s.maxTurnRate * drift;
+  // A drift of curvature rather than of turn rate: at most wanderShare × maxTurnRate for a 1 m/s
+  // walker (a circle of 6.7 m radius), the same curvature slower, so a dog does not circle.
+  const double wander = s.wanderShare * s.maxTurnRate * drift * std::min(1.0, std::abs(b.speed));
 
   // Priorities (Reynolds 1999, combining behaviours): containment outranks separation, both
   // outrank the drift, which fades out as the edge nears.

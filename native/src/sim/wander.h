@@ -34,7 +34,8 @@ struct WanderSettings {
   double maxTurnRate = 0.3;
   // Turn rate per radian of heading error for containment and separation.
   double gain = 1.2;
-  // Neighbours closer than this (m, between leg frames) push a character away.
+  // Neighbours closer than this (m, between leg frames) push a 1 m/s walker away (slower ones:
+  // proportionally closer, at least 1 m).
   double separation = 2.5;
   // The wander drift: at most this share of maxTurnRate.
   double wanderShare = 0.5;

@@ -96,6 +96,30 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
     await page.close();
   });
 
+  it('answers "how many can this device run?" with one button: both capacities shown large, beside the reference machines', { timeout: TIMEOUT }, async () => {
+    const page = await browser.newPage();
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    // Each type's search cut to 6 s (the button's own limit is 50 s a type: under two minutes).
+    await page.goto(`${server.url}bench.html?capacitySeconds=6`, { waitUntil: 'load' });
+    assert.equal(await page.locator('details.advanced').getAttribute('open'), null, 'the experiment form waits under "advanced"');
+    await page.getByRole('button', { name: 'How many can this device run?' }).click();
+    await page.waitForFunction(() => ['done', 'error'].includes(window.gaitlabBench.capacity.state), null, { timeout: TIMEOUT });
+    const capacity = await page.evaluate(() => window.gaitlabBench.capacity);
+    assert.equal(capacity.state, 'done', await page.locator('.capacity').innerText());
+    assert.ok(capacity.biped > 0 && capacity.quadruped > 0, JSON.stringify(capacity));
+    assert.ok(capacity.seconds < 120, `answered in ${capacity.seconds.toFixed(0)} s`);
+    assert.equal(await page.getByTestId('capacity-biped').innerText(), String(capacity.biped));
+    assert.equal(await page.getByTestId('capacity-quadruped').innerText(), String(capacity.quadruped));
+    const size = await page.getByTestId('capacity-biped').evaluate((e) => parseFloat(getComputedStyle(e).fontSize));
+    assert.ok(size >= 32, `shown large (${size} px)`);
+    assert.match(await page.locator('.capacity table').innerText(), /AMD EPYC.*551.*188/s);
+    fs.mkdirSync(path.join(repoDir, 'test-results', 'e2e'), { recursive: true });
+    await page.screenshot({ path: path.join(repoDir, 'test-results', 'e2e', 'capacity.png'), fullPage: false });
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
   it('is linked from the demo page', async () => {
     const html = fs.readFileSync(path.join(repoDir, 'web', 'index.html'), 'utf8');
     assert.match(html, /href="bench\.html"/);

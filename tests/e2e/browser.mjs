@@ -15,10 +15,11 @@ export const resultsDir = path.join(repoDir, 'test-results', 'e2e');
 export const PAGE_TIMEOUT = 120_000;
 
 /**
- * Checks the WASM build is there, starts the dev server and Chromium. Resolves to
+ * Checks the WASM build is there, starts the dev server and Chromium (with `viewport` and any
+ * other context options, such as a phone's isMobile and hasTouch). Resolves to
  * `{ server, context, closePages(), close() }`.
  */
-export async function startBrowser({ viewport }) {
+export async function startBrowser({ viewport, ...contextOptions }) {
   for (const file of ['gaitlab.mjs', 'gaitlab.wasm', 'gaitlab.worker.js']) {
     assert.ok(fs.existsSync(path.join(repoDir, 'build', 'wasm', file)), `build/wasm/${file} exists (run npm run build)`);
   }
@@ -29,6 +30,8 @@ export async function startBrowser({ viewport }) {
     executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
     headless: true,
     viewport,
+    // e.g. a phone: isMobile, hasTouch, deviceScaleFactor.
+    ...contextOptions,
     args: [
       '--no-sandbox',
       '--disable-gpu',

@@ -9,6 +9,7 @@ import { Stage } from './render/stage';
 import {
   defaultThreads,
   errorMessage,
+  MAX_CHARACTERS,
   simOptionsFromQuery,
   type CharacterStatus,
   type SceneCommand,
@@ -16,7 +17,8 @@ import {
 } from './sim/protocol';
 import { SimClient } from './sim/sim-client';
 import { groundHeight, isTerrainKind, type TerrainKind } from './sim/terrain-grid';
-import { ControlPanel } from './ui/control-panel';
+import { CHARACTER_TYPES, type CharacterType } from './gait/character';
+import { ControlPanel, MAX_TURN_DEGREES, WALKING_SPEEDS, type SteerTarget } from './ui/control-panel';
 import { GaitEditors } from './ui/gait-editors';
 import { GaitTransfer } from './ui/gait-transfer';
 import { LEARNER_COLOUR, OptimizePanel } from './ui/optimize-panel';
@@ -29,6 +31,8 @@ const canvas = document.querySelector<HTMLCanvasElement>('#scene');
 if (!canvas) throw new Error('index.html has no <canvas id="scene">');
 
 const overlay = new Overlay(document.body);
+/** Phones: the layout of style.css's `max-width: 480px` (drawer, one-line heads-up, bottom sheet). */
+const phone = window.matchMedia('(max-width: 480px)');
 let client: SimClient | null = null;
 /** Mirrors of the worker's reports: the UI follows what the worker confirms, not the clicks. */
 const state = {
@@ -41,7 +45,10 @@ const state = {
   drawCalls: 0,
   characters: [] as CharacterStatus[],
   selected: null as number | null,
-  follow: false,
+  /** The camera follows the selected character (on by default; the panel and F switch it). */
+  follow: true,
+  /** Arena wandering as the worker last reported it. */
+  wander: { on: true, arenaRadius: 12 },
   terrain: 'flat' as TerrainKind,
 };
 /** Without statistics from the worker for this long, it is stuck (it reports 4 times a second). */
@@ -91,7 +98,16 @@ const panel = new ControlPanel({
   step: () => client?.send({ type: 'step' }),
   timeScale: (scale) => client?.send({ type: 'timeScale', scale }),
   newScene: () => client?.reset(),
-  add: (kind, count) => send({ type: 'add', kind, count }),
+  add: (kind, count) => {
+    // The page's limit (MAX_CHARACTERS, protocol.ts): refused here with the limit, nothing added.
+    const room = MAX_CHARACTERS - state.characters.length;
+    if (count > room) {
+      panel.showCrowdLimit(`Not added: the page holds at most ${MAX_CHARACTERS} characters; ${room > 0 ? `${room} more fit` : 'it is full'}.`);
+      return;
+    }
+    panel.showCrowdLimit(null);
+    send({ type: 'add', kind, count });
+  },
   removeSelected: () => {
     if (state.selected === null) return;
     send({ type: 'remove', id: state.selected });
@@ -100,12 +116,15 @@ const panel = new ControlPanel({
   resetSelected: () => state.selected !== null && send({ type: 'resetCharacter', id: state.selected }),
   resetFallen: () => send({ type: 'resetFallen' }),
   autoReset: (seconds) => send({ type: 'autoReset', seconds }),
-  steer: (speed, turn, target) =>
-    send({ type: 'setGoal', id: target === 'selected' && state.selected !== null ? state.selected : 'all', speed, turn }),
+  steer: (target, goal) => steer(target, goal),
+  wander: (on, target) => send({ type: 'wander', on, ...(target === 'all' ? {} : { id: target.id }) }),
   follow: (on) => (state.follow = on),
   deselect: () => select(null),
   terrain: (kind) => send({ type: 'setTerrain', terrain: kind }),
 });
+
+// On a phone the panel is a drawer: folded to its title until opened.
+if (phone.matches) panel.gui.close();
 
 installTestHook({
   stats: () => ({
@@ -127,6 +146,7 @@ installTestHook({
     selected: state.selected,
     terrain: state.terrain,
     drawnTerrain: stage?.terrain?.kind ?? null,
+    wander: { ...state.wander },
   }),
   characters: () => state.characters,
   editors: () => gaits,
@@ -150,6 +170,21 @@ installTestHook({
   },
   groundHeight: (x, z) => (stage?.terrain ? groundHeight(stage.terrain, x, z) : null),
   view: (from, to) => stage?.view(new THREE.Vector3(...from), new THREE.Vector3(...to)),
+  ownerAt: (x, y) => pointer?.ownerAt(x, y) ?? null,
+  camera: () => ({
+    distance: stage ? stage.camera.position.distanceTo(stage.controls.target) : 0,
+    azimuth: stage ? stage.controls.getAzimuthalAngle() : 0,
+  }),
+  bodies: () => {
+    const { count } = crowd.matrices();
+    const p = new THREE.Vector3();
+    const { array } = crowd.matrices();
+    return Array.from({ length: count }, (_, i) => ({
+      owner: crowd.owners[i] ?? -1,
+      position: crowd.bodyPosition(i, p).toArray() as [number, number, number],
+      matrix: Array.from(array.subarray(i * 16, i * 16 + 16)),
+    }));
+  },
 });
 
 /** Why window.gaitlab's optimize functions cannot work (the panel is made with the first scene). */
@@ -163,26 +198,52 @@ let pointer: PointerInteraction | null = null;
 try {
   stage = new Stage(canvas);
   stage.scene.add(crowd.group, ring.mesh, learnerRing.mesh);
-  pointer = new PointerInteraction(stage, crowd, { send, select });
+  pointer = new PointerInteraction(stage, crowd, {
+    send,
+    select,
+    // The last report's horizontal speed along its heading (a walker moves where it faces).
+    velocityOf: (id) => {
+      const c = state.characters.find((x) => x.id === id);
+      return c && !c.fallen ? new THREE.Vector3(Math.sin(c.heading) * c.speed, 0, Math.cos(c.heading) * c.speed) : null;
+    },
+  });
 } catch (error) {
   showError('WebGL is not available', `${errorMessage(error)}\nThe demo needs a browser with WebGL 2.`);
 }
 
-/** Keys steer the selected character (or all), and drive the simulation. */
+/**
+ * Steering acts on what the panel says: the selected character (steered by hand from then on: it
+ * leaves the wandering crowd), or everyone, each type at its own speed.
+ */
+function steer(target: SteerTarget, goal: { speed: Record<CharacterType, number>; turn: number }): void {
+  if (target !== 'all') {
+    send({ type: 'setGoal', id: target.id, speed: goal.speed[target.type], turn: goal.turn });
+    panel.values.wander = false;
+    return;
+  }
+  for (const type of CHARACTER_TYPES) send({ type: 'setGoal', id: 'all', character: type, speed: goal.speed[type], turn: goal.turn });
+}
+
+/** Keys steer the selected character (or all), within the ranges the panel's sliders have. */
 function onKey(event: KeyboardEvent): void {
   if (event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement || event.ctrlKey || event.metaKey) return;
   const v = panel.values;
-  const steer = (dSpeed: number, dTurn: number) => {
-    v.speed = Math.min(2, Math.max(-0.5, Math.round((v.speed + dSpeed) * 100) / 100));
-    v.turnDegrees = Math.min(60, Math.max(-60, v.turnDegrees + dTurn));
-    v.steer = state.selected !== null ? 'selected' : 'all';
-    send({ type: 'setGoal', id: state.selected ?? 'all', speed: v.speed, turn: (v.turnDegrees * Math.PI) / 180 });
+  const keySteer = (dSpeed: number, dTurn: number) => {
+    const target = panel.steerTarget;
+    const clamp = (x: number, lo: number, hi: number) => Math.min(hi, Math.max(lo, Math.round(x * 100) / 100));
+    for (const type of CHARACTER_TYPES) {
+      if (target !== 'all' && target.type !== type) continue;
+      const key = type === 'biped' ? 'bipedSpeed' : 'quadrupedSpeed';
+      v[key] = clamp(v[key] + dSpeed, WALKING_SPEEDS[type].min, WALKING_SPEEDS[type].max);
+    }
+    v.turnDegrees = clamp(v.turnDegrees + dTurn, -MAX_TURN_DEGREES, MAX_TURN_DEGREES);
+    steer(target, { speed: { biped: v.bipedSpeed, quadruped: v.quadrupedSpeed }, turn: (v.turnDegrees * Math.PI) / 180 });
   };
   switch (event.key) {
-    case 'w': case 'W': case 'ArrowUp': steer(0.1, 0); break;
-    case 's': case 'S': case 'ArrowDown': steer(-0.1, 0); break;
-    case 'a': case 'A': case 'ArrowLeft': steer(0, 5); break;
-    case 'd': case 'D': case 'ArrowRight': steer(0, -5); break;
+    case 'w': case 'W': case 'ArrowUp': keySteer(0.1, 0); break;
+    case 's': case 'S': case 'ArrowDown': keySteer(-0.1, 0); break;
+    case 'a': case 'A': case 'ArrowLeft': keySteer(0, 5); break;
+    case 'd': case 'D': case 'ArrowRight': keySteer(0, -5); break;
     case ' ': client?.send({ type: state.paused ? 'resume' : 'pause' }); break;
     case '.': client?.send({ type: 'step' }); break;
     case 'f': case 'F': v.follow = state.follow = !state.follow; break;
@@ -232,6 +293,7 @@ if (!window.crossOriginIsolated) {
       state.lastStats = performance.now(); // the stall watchdog counts from here
       realtimeMeter.reset();
       framed = false;
+      if (stage) stage.autoZoom = true;
       select(null);
       console.info(`gaitlab ${info.version}: scene ${info.generation}, ${reader.capacity} body slots, ${info.threads} threads`);
       if (!gaits) gaits = GaitEditors.create(info.schema, client!, transfer, panel.gaitFolder, overlay);
@@ -243,6 +305,11 @@ if (!window.crossOriginIsolated) {
       state.paused = stats.paused;
       state.timeScale = stats.timeScale;
       state.characters = stats.characters;
+      if (stats.wander) {
+        state.wander = stats.wander;
+        stage?.setArena(stats.wander.on ? stats.wander.arenaRadius : null);
+        panel.setCrowdWander(stats.wander.on);
+      }
       learnerId = stats.learner;
       if (stats.terrain !== state.terrain) {
         state.terrain = stats.terrain;
@@ -262,6 +329,13 @@ if (!window.crossOriginIsolated) {
   });
 
   const activeStage = stage;
+  /** Centre and radius of the crowd's leg frames as last reported (standing characters), or null. */
+  const crowdRegion = (): THREE.Sphere | null => {
+    const box = new THREE.Box3();
+    const p = new THREE.Vector3();
+    for (const c of state.characters) if (c.id !== learnerId && !c.fallen) box.expandByPoint(p.set(c.position[0], 0.6, c.position[2]));
+    return box.isEmpty() ? null : box.getBoundingSphere(new THREE.Sphere());
+  };
   const focus = new THREE.Vector3();
   let lastFrame = performance.now() / 1000;
   const frame = (): void => {
@@ -284,6 +358,12 @@ if (!window.crossOriginIsolated) {
       if (state.follow) activeStage.follow(focus, dt);
     } else {
       ring.place(null);
+    }
+    // Otherwise the camera keeps the crowd in view as it wanders (not the learner, which the
+    // optimize panel frames itself).
+    if (!following && (learnerId === null || !optimizer?.followLearner)) {
+      const region = crowdRegion();
+      if (region) activeStage.keepInView(region.center, region.radius, dt);
     }
     const learnerIndex = learnerId === null ? -1 : crowd.firstBodyOf(learnerId);
     if (learnerIndex >= 0) {
@@ -309,6 +389,7 @@ if (!window.crossOriginIsolated) {
   const resize = () => {
     // Keep the crowd clear of the control panel (and the optimize panel, open) on wide windows.
     activeStage.rightInset = window.innerWidth > 700 ? panel.gui.domElement.offsetWidth + 10 : 0;
+    if (phone.matches) activeStage.rightInset = 0;
     activeStage.leftInset = window.innerWidth > 900 && optimizer?.element.open ? optimizer.element.offsetWidth + 10 : 0;
     activeStage.resize();
   };
@@ -378,13 +459,21 @@ if (!window.crossOriginIsolated) {
       characters: state.characters.length,
       fallen: state.characters.filter((c) => c.fallen).length,
       threads: state.threads,
-      mode: isolationMode() === 'service worker' ? 'multi-threaded (isolated by service worker)' : 'multi-threaded (isolated by headers)',
+      // One thread is serial, whatever the isolation allows.
+      mode: `${state.threads > 1 ? 'multi-threaded' : 'serial'} (isolated by ${isolationMode() === 'service worker' ? 'service worker' : 'headers'})`,
       drawCalls: state.drawCalls,
       renderScale: activeStage.scale,
       paused: state.paused,
       timeScale: state.timeScale,
       selected: selected ? `${selected.type} #${selected.id}${selected.fallen ? ' (down)' : ''}` : null,
-    });
+    }, phone.matches);
+    // On a phone the gait editors are a bottom sheet: keep the view's centre above it.
+    const sheet = phone.matches ? document.querySelector<HTMLDetailsElement>('details.editors[open]') : null;
+    const inset = sheet ? sheet.offsetHeight : 0;
+    if (inset !== activeStage.bottomInset) {
+      activeStage.bottomInset = inset;
+      activeStage.resize();
+    }
   }, 250);
 }
 

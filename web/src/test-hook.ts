@@ -41,6 +41,8 @@ export interface GaitlabStats {
   /** The ground the simulation reports, and the one the page draws (they differ for a moment after a change). */
   terrain: TerrainKind;
   drawnTerrain: TerrainKind | null;
+  /** Arena wandering as the worker reports it: on or off, and the arena's radius (m, about the origin). */
+  wander: { on: boolean; arenaRadius: number };
 }
 
 export interface GaitlabHook {
@@ -98,6 +100,15 @@ export interface GaitlabHook {
   groundHeight(x: number, z: number): number | null;
   /** Puts the camera at `from` looking at `to` (screenshots and tests; orbiting continues from there). */
   view(from: Vec3, to: Vec3): void;
+  /**
+   * Every body drawn now: its owner (character id, −1 for props), centre (m) and instance matrix
+   * (column-major, its box's size baked in: the unit box's axes scaled).
+   */
+  bodies(): { owner: number; position: Vec3; matrix: number[] }[];
+  /** The camera: its distance to the point it looks at (m) and its azimuth about +y (rad). */
+  camera(): { distance: number; azimuth: number };
+  /** The owner of the body a click at (x, y) would pick (character id, −1 a prop), or null. */
+  ownerAt(x: number, y: number): number | null;
 }
 
 declare global {
@@ -129,6 +140,9 @@ export interface TestHookHost {
   screenPosition(id: number): { x: number; y: number } | null;
   groundHeight(x: number, z: number): number | null;
   view(from: Vec3, to: Vec3): void;
+  bodies(): { owner: number; position: Vec3; matrix: number[] }[];
+  camera(): { distance: number; azimuth: number };
+  ownerAt(x: number, y: number): number | null;
 }
 
 /** Installs `window.gaitlab`, frozen. */
@@ -171,6 +185,9 @@ export function installTestHook(host: TestHookHost): GaitlabHook {
     setTerrain: (kind) => host.setTerrain(kind),
     groundHeight: (x, z) => host.groundHeight(x, z),
     view: (from, to) => host.view(from, to),
+    bodies: () => host.bodies(),
+    camera: () => host.camera(),
+    ownerAt: (x, y) => host.ownerAt(x, y),
   };
   window.gaitlab = Object.freeze(hook);
   return hook;

@@ -286,6 +286,13 @@ int gl_sim_set_auto_reset(void* s, double seconds) {
 
 int gl_sim_character_count(void* s) { return sim(s)->characterCount(); }
 
+int gl_sim_set_wander(void* s, int id, double arena_radius) {
+  if (!isFinite(arena_radius) || (arena_radius != 0 && (arena_radius < 2 || arena_radius > 10000)))
+    return refuse(GL_ERR_ARGUMENT, "arena_radius: " + str(arena_radius) + " is not 0 or in [2, 10000]");
+  if (!sim(s)->setWander(id, arena_radius)) return refuse(GL_ERR_NO_CHARACTER, noCharacter(id));
+  return GL_OK;
+}
+
 int gl_sim_character_info(void* s, double* out, int capacity) {
   if (capacity < 0) return refuse(GL_ERR_ARGUMENT, "capacity: " + str(capacity) + " is negative");
   Simulation& S = *sim(s);

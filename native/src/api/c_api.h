@@ -225,6 +225,15 @@ GL_EXPORT int gl_sim_remove_character(void* sim, int id);
 // non-finite time.
 GL_EXPORT int gl_sim_set_auto_reset(void* sim, double seconds);
 
+// Arena wandering (native/src/sim/wander.h): character `id`, or every character now in the scene
+// with id = -1, wanders inside a circle of `arena_radius` metres about the origin (one arena for
+// all wanderers: the last radius given), keeping its goal's speed while wandering chooses its
+// turn rate (turning away from the arena's edge and from neighbours, within ±0.3 rad/s);
+// `arena_radius` = 0 stops it (it keeps its last goal). A goal given with gl_sim_set_goal sets
+// the speed; wandering replaces its turn rate at the next tenth of a second. GL_OK;
+// GL_ERR_NO_CHARACTER, or GL_ERR_ARGUMENT for a radius that is not 0 or in [2, 10000].
+GL_EXPORT int gl_sim_set_wander(void* sim, int id, double arena_radius);
+
 GL_EXPORT int gl_sim_character_count(void* sim);  // never fails
 
 // Fields per character written by gl_sim_character_info, in this order.

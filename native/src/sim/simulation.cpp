@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gait/heading.h"
 #include "sim/state_hash.h"
 
 namespace gaitlab::sim {
@@ -123,6 +124,23 @@ void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
 // ---- Stepping -----------------------------------------------------------------------------------
 
 void Simulation::step(int steps) {
+  if (!wander_.any()) {
+    runSteps(steps);
+  } else {
+    // Wandering steers at fixed step indices (every kWanderPeriodSteps), whatever the batches
+    // the caller steps in, so a run replays the same however it is stepped.
+    while (steps > 0) {
+      const int into = static_cast<int>(stepIndex() % kWanderPeriodSteps);
+      if (into == 0) steerWanderers();
+      const int chunk = std::min(steps, kWanderPeriodSteps - into);
+      runSteps(chunk);
+      steps -= chunk;
+    }
+  }
+  publish();
+}
+
+void Simulation::runSteps(int steps) {
   stepping_.run(
       steps, characterCount(), shards(), [this](int i) { agents_[i]->control(); },
       [this] { applyDrag(); }, [this](int shard) { shards_.step(shard); },
@@ -130,7 +148,37 @@ void Simulation::step(int steps) {
         shards_.rehomeProps(agents_);
         updateFallen();
       });
-  publish();
+}
+
+// ---- Wandering ----------------------------------------------------------------------------------
+
+bool Simulation::setWander(int id, double arenaRadius) {
+  const bool on = arenaRadius > 0;
+  if (on) wander_.setArenaRadius(arenaRadius);
+  if (id == -1) {
+    for (const auto& a : agents_) wander_.set(a->id, on);
+    return true;
+  }
+  if (indexOf(id) < 0) return false;
+  wander_.set(id, on);
+  return true;
+}
+
+void Simulation::steerWanderers() {
+  const int n = characterCount();
+  std::vector<WanderBody> bodies(n);
+  for (int i = 0; i < n; ++i) {
+    const physics::Character& c = *agents_[i]->body;
+    const auto root = c.segmentState(c.morphology().legFrames[0]);
+    bodies[i] = {agents_[i]->id, root.position.x(), root.position.z(), gait::headingOf(root.orientation),
+                 agents_[i]->controller.goal().speed, wander_.wanders(agents_[i]->id), fallen(i)};
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!bodies[i].wanders || bodies[i].fallen) continue;
+    gait::Goal goal = agents_[i]->controller.goal();
+    goal.turnRate = wanderTurnRate(bodies, i, wander_.arenaRadius(), time());
+    agents_[i]->controller.setGoal(goal);
+  }
 }
 
 // ---- Physics shards -----------------------------------------------------------------------------

@@ -34,6 +34,7 @@
 #include "sim/scene_layout.h"
 #include "sim/stepping.h"
 #include "sim/thread_pool.h"
+#include "sim/wander.h"
 
 namespace gaitlab::sim {
 
@@ -142,6 +143,16 @@ class Simulation {
   // 64-bit FNV-1a over the exact bits of every body's transform and velocities (state_hash.h).
   std::string stateHash() const;
 
+  // ---- Wandering (wander.h) -------------------------------------------------------------------
+  // Character `id` (or every character now in the scene with id = -1) wanders inside the arena,
+  // a circle of `arenaRadius` metres about the origin (one arena for every wanderer: the last
+  // radius given), keeping its goal's speed while wandering chooses its turn rate every
+  // kWanderPeriodSteps steps; `arenaRadius` = 0 stops it wandering (it keeps its last goal).
+  // Returns false if no character has that id. Resets keep it (ids are kept).
+  bool setWander(int id, double arenaRadius);
+  bool wanders(int index) const { return wander_.wanders(idOf(index)); }
+  double arenaRadius() const { return wander_.arenaRadius(); }
+
   // ---- Interaction (interaction.h, interaction.cpp) -------------------------------------------
   // Steering (beyond the thesis): character index i, or all with i = -1.
   void setGoal(int i, const gait::Goal& goal);
@@ -175,6 +186,8 @@ class Simulation {
   void publish() { render_.publish(stepIndex(), time()); }
   void applyDrag();     // interaction.cpp: the drag spring, before the physics of a step
   void updateFallen();  // interaction.cpp: fall times and the automatic reset, after it
+  void runSteps(int steps);
+  void steerWanderers();  // wander.h: the wanderers' turn rates, between fixed steps
 
   uint32_t seed_;
   body::Morphology biped_, quadruped_;
@@ -186,6 +199,7 @@ class Simulation {
   RenderPublisher render_;
   Stepping stepping_;
   Interaction interaction_;
+  Wander wander_;
 };
 
 }  // namespace gaitlab::sim

@@ -15,18 +15,21 @@ import {
   type BenchDocument, type Point, type TimeField,
 } from '../../../bench/lib/analysis.mjs';
 import { buildGrid, parseList, pointCost, type BenchEvent, type BenchInputs, type PointSpec } from './protocol';
+import { MAX_THREADS } from '../sim/gaitlab-wasm';
 
 interface Hook {
   state: 'idle' | 'running' | 'done' | 'cancelled' | 'error';
   document: BenchDocument | null;
   error: string | null;
+  /** "How many can this device run?": per type, the capacity found (null until measured). */
+  capacity: { state: 'idle' | 'running' | 'done' | 'error'; biped: number | null; quadruped: number | null; seconds: number };
 }
 declare global {
   interface Window {
     gaitlabBench: Hook;
   }
 }
-const hook: Hook = { state: 'idle', document: null, error: null };
+const hook: Hook = { state: 'idle', document: null, error: null, capacity: { state: 'idle', biped: null, quadruped: null, seconds: 0 } };
 window.gaitlabBench = hook;
 
 const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
@@ -70,9 +73,47 @@ root.append(
     'timing the controller (as the thesis did), the physics and the whole 1/120 s step. ',
     el('a', { href: './' }, 'Back to the demo')),
 );
+// ---- "How many can this device run?" ----------------------------------------------------------
+/**
+ * The committed reference machine's capacities (README, Performance: bench/results/
+ * amd-epyc-2c-2026-11-22.json, the capacity table): AMD EPYC, 2 cores, full mode on 2 threads.
+ */
+const REFERENCE = [
+  { runtime: 'Chromium (WASM)', biped: 551, quadruped: 188 },
+  { runtime: 'native', biped: 622, quadruped: 258 },
+];
+const capacityThreads = Math.max(1, Math.min(cores || 1, MAX_THREADS));
+/**
+ * Seconds each type's search may take: 50, so that both answer within two minutes with the
+ * warm-ups; `?capacitySeconds=N` (1–50) shortens it (the end-to-end test).
+ */
+const capacitySeconds = Math.min(50, Math.max(1, Number(params.get('capacitySeconds')) || 50));
+const capacityButton = el('button', { textContent: 'How many can this device run?', className: 'big-button' });
+const capacityStatus = el('p', { className: 'lead' }, `Measures in at most two minutes, on ${capacityThreads} thread${capacityThreads === 1 ? '' : 's'} (all this device offers, up to ${MAX_THREADS}).`);
+const answerFigure = (label: string) => {
+  const value = el('div', { className: 'answer-value', textContent: '–' });
+  const detail = el('div', { className: 'answer-detail', textContent: '' });
+  return { value, detail, box: el('div', { className: 'answer' }, el('div', { className: 'answer-label' }, label), value, detail) };
+};
+const answers = { 2: answerFigure('bipeds'), 4: answerFigure('quadrupeds') };
+answers[2].value.setAttribute('data-testid', 'capacity-biped');
+answers[4].value.setAttribute('data-testid', 'capacity-quadruped');
+root.append(el('section', { className: 'capacity' },
+  el('h2', {}, 'How many characters can this device run in real time?'),
+  el('p', { className: 'lead' }, 'The most characters whose whole step (controller and physics, all threads) fits the 1/120 s of a fixed step at 120 Hz.'),
+  el('div', { className: 'buttons' }, capacityButton),
+  capacityStatus,
+  el('div', { className: 'answers' }, answers[2].box, answers[4].box),
+  el('h3', {}, 'Reference machines (committed measurements)'),
+  table(['machine', 'runtime', 'bipeds', 'quadrupeds'], REFERENCE.map((r) => ['AMD EPYC, 2 cores, 2 threads', r.runtime, r.biped, r.quadruped]), 2),
+));
+
 const device = el('dl', { className: 'device' });
 root.append(el('section', {}, el('h2', {}, 'Device'), device));
-root.append(el('section', {},
+const advanced = el('details', { className: 'advanced' });
+root.append(advanced);
+advanced.append(el('summary', {}, 'Advanced: the thesis’s full experiment, charts and tables'));
+advanced.append(el('section', {},
   el('h2', {}, 'Experiment'),
   el('div', { className: 'form' }, legsField.label, charactersField.label, threadsField.label, modesField.label,
     stepsField.label, runsField.label, el('label', { className: 'inline' }, framesBox, 'per-frame statistics')),
@@ -85,7 +126,9 @@ const chartsSection = el('section', {}, el('h2', {}, 'Charts'), el('p', { classN
 const charts = el('div', { className: 'charts' });
 chartsSection.append(charts);
 const tablesSection = el('section', {}, el('h2', {}, 'Tables'));
-root.append(chartsSection, tablesSection);
+advanced.append(chartsSection, tablesSection);
+// A link that presets the form (?legs=…&autorun=1) opens the experiment.
+if (['legs', 'characters', 'threads', 'modes', 'steps', 'runs', 'autorun'].some((k) => params.has(k))) advanced.open = true;
 
 function showDevice(machine: Record<string, unknown> | null): void {
   const rows: [string, string][] = [
@@ -331,7 +374,7 @@ function start(): void {
       if (problems.length) return fail(`the results do not match bench/schema.json: ${problems.join('; ')}`);
       drawCharts();
       drawTables();
-      finish(e.cancelled ? 'cancelled' : 'done', e.cancelled ? `Cancelled after ${current.points.length} points.` : `Done: ${current.points.length} points in ${seconds.toFixed(0)} s.`);
+      finish(e.cancelled ? 'cancelled' : 'done', e.cancelled ? `Cancelled after ${current.points.length} points.` : `Done: ${current.points.length} points in ${formatSeconds(seconds)}.`);
     } else if (e.type === 'error') {
       fail(e.message);
     }
@@ -344,6 +387,57 @@ function fail(message: string): void {
   finish('error', `Error: ${message}`);
   status.className = 'error';
 }
+
+/** "0.4 s", "12 s", "2.5 min": never "0 s" for a run that took time. */
+function formatSeconds(seconds: number): string {
+  if (seconds < 10) return `${seconds.toFixed(1)} s`;
+  return seconds < 90 ? `${seconds.toFixed(0)} s` : `${(seconds / 60).toFixed(1)} min`;
+}
+
+function measureCapacity(): void {
+  if (worker) return;
+  hook.capacity = { state: 'running', biped: null, quadruped: null, seconds: 0 };
+  capacityButton.disabled = startButton.disabled = true;
+  for (const a of Object.values(answers)) {
+    a.value.textContent = '…';
+    a.detail.textContent = '';
+  }
+  const t0 = performance.now();
+  capacityStatus.textContent = 'Loading the module…';
+  const done = (state: 'done' | 'error', message: string) => {
+    hook.capacity.state = state;
+    hook.capacity.seconds = (performance.now() - t0) / 1000;
+    capacityStatus.textContent = message;
+    capacityButton.disabled = startButton.disabled = false;
+    worker?.terminate();
+    worker = null;
+  };
+  worker = new Worker(new URL('./bench.worker.ts', import.meta.url), { type: 'module', name: 'gaitlab-bench' });
+  worker.onerror = (event) => done('error', `Error: ${event.message || 'the benchmark worker failed to start'}`);
+  worker.onmessage = (event: MessageEvent<BenchEvent>) => {
+    const e = event.data;
+    if (e.type === 'machine') showDevice(e.machine);
+    else if (e.type === 'status') capacityStatus.textContent = `${e.message[0].toUpperCase()}${e.message.slice(1)}…`;
+    else if (e.type === 'capacityProbe') {
+      capacityStatus.textContent = `${e.characters} ${e.legs === 2 ? 'bipeds' : 'quadrupeds'}: ${e.stepMs.toFixed(2)} ms a step (${e.stepMs <= STEP_BUDGET_MS ? 'within' : 'over'} ${STEP_BUDGET_MS.toFixed(2)} ms)`;
+    } else if (e.type === 'capacity') {
+      const a = answers[e.legs];
+      a.value.textContent = String(e.within?.characters ?? 0);
+      a.detail.textContent = [
+        e.within ? `${e.within.stepMs.toFixed(2)} ms a step` : 'not even the smallest crowd tried fits',
+        e.over ? `${e.over.characters} took ${e.over.stepMs.toFixed(2)} ms` : e.stopped ? 'at least: the time limit ended the search' : 'the largest crowd tried fits',
+        `measured in ${formatSeconds(e.seconds)}`,
+      ].join(' · ');
+      hook.capacity[e.legs === 2 ? 'biped' : 'quadruped'] = e.within?.characters ?? 0;
+    } else if (e.type === 'done') {
+      done('done', `Done in ${formatSeconds((performance.now() - t0) / 1000)}, full mode on ${capacityThreads} thread${capacityThreads === 1 ? '' : 's'}.`);
+    } else if (e.type === 'error') {
+      done('error', `Error: ${e.message}`);
+    }
+  };
+  worker.postMessage({ type: 'capacity', wasmUrl: new URL(`${import.meta.env.BASE_URL}wasm/gaitlab.mjs`, location.href).href, threads: capacityThreads, secondsPerType: capacitySeconds });
+}
+capacityButton.onclick = measureCapacity;
 
 startButton.onclick = start;
 cancelButton.onclick = () => {

@@ -28,6 +28,11 @@ export interface BenchInputs {
 
 export type BenchCommand =
   | { type: 'run'; wasmUrl: string; inputs: BenchInputs; grid: PointSpec[] }
+  /**
+   * "How many can this device run?": the real-time capacity at 120 Hz of bipeds, then of
+   * quadrupeds, full mode on `threads` threads (capacity.ts), each search at most `secondsPerType`.
+   */
+  | { type: 'capacity'; wasmUrl: string; threads: number; secondsPerType: number }
   | { type: 'cancel' };
 
 export type BenchEvent =
@@ -37,6 +42,13 @@ export type BenchEvent =
   /** `point` is the JSON element of "points" for grid[index]. */
   | { type: 'point'; index: number; point: Record<string, unknown>; seconds: number }
   | { type: 'done'; cancelled: boolean }
+  /** A crowd the capacity search measured: its mean whole step. */
+  | { type: 'capacityProbe'; legs: 2 | 4; characters: number; stepMs: number }
+  /**
+   * A type's capacity: the largest crowd measured within 8.33 ms a step, and the smallest over;
+   * `stopped` when the time limit (or a cancel) ended the search before it closed in.
+   */
+  | { type: 'capacity'; legs: 2 | 4; within: { characters: number; stepMs: number } | null; over: { characters: number; stepMs: number } | null; seconds: number; stopped: boolean }
   | { type: 'error'; message: string };
 
 /**

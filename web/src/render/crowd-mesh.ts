@@ -1,16 +1,19 @@
-// Every simulated body — character segments and props — drawn as ONE InstancedMesh of a unit
-// box: one draw call (plus one per shadow pass) however many bodies there are.
+// Every simulated body — character segments and props — drawn as ONE InstancedMesh of a rounded
+// unit box, and the parts that make a figure recognisable (heads, arms, ears, tails: figures.ts)
+// as one more: two draw calls (plus the shadow pass) however many bodies there are.
 //
 // Each animation frame copies the newest complete frame of matrices from the shared render
 // buffer straight into instanceMatrix (docs/design.md, data flow step 3). The matrices arrive with
 // each box's size baked in, in three.js's column-major layout, so no per-body work is done here.
 import * as THREE from 'three';
 import { MATRIX_FLOATS, type FrameMeta, type RenderBufferReader } from '../sim/render-buffer';
+import { Figures, roundedUnitBox } from './figures';
 
 export class CrowdMesh {
   /** Parent of the instanced mesh; the mesh itself is replaced when the capacity changes. */
   readonly group = new THREE.Group();
-  private readonly geometry = new THREE.BoxGeometry(1, 1, 1);
+  private readonly geometry = roundedUnitBox();
+  private figures: Figures | null = null;
   private readonly material = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.65, metalness: 0 });
   private mesh: THREE.InstancedMesh | null = null;
   private reader: RenderBufferReader | null = null;
@@ -51,6 +54,13 @@ export class CrowdMesh {
       mesh.frustumCulled = false;
       this.mesh = mesh;
       this.group.add(mesh);
+      if (this.figures) {
+        this.group.remove(this.figures.mesh, this.figures.contacts);
+        this.figures.dispose();
+      }
+      // At most as many parts as bodies: a biped has 6 parts for 7 bodies, a dog 6 for 18.
+      this.figures = new Figures(this.geometry, this.material, capacity);
+      this.group.add(this.figures.mesh, this.figures.contacts);
     }
     this.mesh.count = 0;
   }
@@ -82,6 +92,7 @@ export class CrowdMesh {
     matrices.addUpdateRange(0, frame.bodyCount * MATRIX_FLOATS);
     matrices.needsUpdate = true;
     this.updateColours(reader, mesh, frame.bodyCount);
+    this.figures?.update(matrices.array as Float32Array, this.owners, frame.bodyCount);
     return true;
   }
 

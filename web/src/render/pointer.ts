@@ -4,7 +4,7 @@
 // gestures (dragging the ground, wheel, right button).
 import * as THREE from 'three';
 import type { CrowdMesh } from './crowd-mesh';
-import { pickBody, throwVelocity } from './picking';
+import { leadTarget, pickBody, throwVelocity } from './picking';
 import type { Stage } from './stage';
 import type { SceneCommand, Vec3 } from '../sim/protocol';
 import { groundHeight, intersectGround } from '../sim/terrain-grid';
@@ -12,6 +12,8 @@ import { groundHeight, intersectGround } from '../sim/terrain-grid';
 export interface PointerActions {
   send(command: SceneCommand): void;
   select(id: number | null): void;
+  /** Character `id`'s velocity (m/s, world), to lead a throw at it; null if unknown. */
+  velocityOf?(id: number): THREE.Vector3 | null;
 }
 
 /** Pointer travel (CSS pixels) below which a press and release is a click, not a drag. */
@@ -51,6 +53,11 @@ export class PointerInteraction {
     const ndc = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
     this.raycaster.setFromCamera(ndc, this.stage.camera);
     return this.raycaster.ray;
+  }
+
+  /** The owner of the body at a point of the page (CSS pixels; −1 a prop), or null: for tests. */
+  ownerAt(clientX: number, clientY: number): number | null {
+    return this.pickCharacter(this.ray({ clientX, clientY } as PointerEvent))?.owner ?? null;
   }
 
   /** The character body under the pointer: its owner, segment index and the point hit. */
@@ -120,7 +127,7 @@ export class PointerInteraction {
     const ray = this.ray(event);
     const hit = event.shiftKey ? this.pickCharacter(ray) : null;
     const target = hit ? hit.point : this.groundPoint(ray);
-    if (target) this.throwAt(target);
+    if (target) this.throwAt(target, hit && hit.owner >= 0 ? this.actions.velocityOf?.(hit.owner) : null);
   }
 
   /** Where a ray meets the ground as the simulation has it (slopes and bumps included). */
@@ -137,11 +144,15 @@ export class PointerInteraction {
     this.stage.controls.enabled = true;
   }
 
-  /** Throws a box from just in front of the camera so that it lands on `target`. */
-  throwAt(target: THREE.Vector3): void {
+  /**
+   * Throws a box from just in front of the camera so that it lands on `target`, or, for a target
+   * moving at `moving` m/s, where the target will be when the box arrives (leadTarget).
+   */
+  throwAt(target: THREE.Vector3, moving?: THREE.Vector3 | null): void {
     const camera = this.stage.camera.position;
     const from = camera.clone().add(target.clone().sub(camera).normalize().multiplyScalar(1.0));
-    const velocity = throwVelocity(from, target);
+    const aim = moving ? leadTarget(from, target, moving) : target;
+    const velocity = throwVelocity(from, aim);
     this.actions.send({ type: 'throwBox', from: toVec3(from), velocity: toVec3(velocity), half: BOX_HALF });
   }
 }

@@ -7,6 +7,8 @@ import type { TerrainGrid } from '../sim/terrain-grid';
 import { TerrainMesh } from './terrain-mesh';
 
 const SKY = 0xbfd4e6;
+/** The sky's colour overhead; SKY is its colour at the horizon (and the fog's). */
+const ZENITH = 0x6f9bd1;
 const GROUND = 0x9aa68c;
 /** Side of the square ground plane (metres); fog hides its edge. */
 const GROUND_SIZE = 400;
@@ -28,7 +30,7 @@ export class Stage {
     this.renderer.shadowMap.enabled = true;
     this.renderer.shadowMap.type = THREE.PCFShadowMap; // (r187 dropped PCFSoftShadowMap)
 
-    this.scene.background = new THREE.Color(SKY);
+    this.scene.background = this.skyTexture();
     // Fog in the sky's colour dissolves the far edge of the ground into the horizon.
     this.scene.fog = new THREE.Fog(SKY, 30, 120);
 
@@ -50,6 +52,8 @@ export class Stage {
     shadowCamera.right = shadowCamera.top = SHADOW_EXTENT;
     shadowCamera.near = 0.5;
     shadowCamera.far = 60;
+    // Soft edges: PCF filtering over a wider kernel (a penumbra of a few centimetres).
+    this.sun.shadow.radius = 3;
     this.sun.shadow.bias = -0.0005;
     this.sun.shadow.normalBias = 0.02;
     this.scene.add(this.sun, this.sun.target);
@@ -67,10 +71,11 @@ export class Stage {
     this.scene.add(this.ground);
     // The relief's material: the same texture, its uv in metres (one grid square per metre).
     const reliefTexture = texture.clone();
-    reliefTexture.repeat.set(1, 1);
+    reliefTexture.repeat.set(1 / 5, 1 / 5);
     this.reliefMaterial = new THREE.MeshStandardMaterial({ map: reliefTexture, roughness: 0.95 });
 
     this.followTarget();
+    this.watchUserZoom(canvas);
   }
 
   /** The flat ground: everywhere on flat terrain, beyond the relief's grid otherwise. */
@@ -122,6 +127,8 @@ export class Stage {
   rightInset = 0;
   /** The same on the left (the optimize panel, when open). */
   leftInset = 0;
+  /** CSS pixels at the bottom covered by a sheet (the gait editors on a phone): the view's centre moves up by half of it. */
+  bottomInset = 0;
 
   /** Matches the drawing buffer and projection to the canvas's CSS size. */
   resize(): void {
@@ -135,8 +142,11 @@ export class Stage {
     const clamp = (inset: number) => Math.max(0, Math.min(inset, width / 3));
     const shift = clamp(this.rightInset) - clamp(this.leftInset);
     const wider = Math.abs(shift);
-    this.camera.aspect = (width + wider) / Math.max(1, height);
-    if (wider > 0) this.camera.setViewOffset(width + wider, height, Math.max(0, shift), 0, width, height);
+    // The same vertically: a view `taller` higher, extended upwards (the canvas its lower part),
+    // so that its centre sits taller/2 above the canvas's, in the middle of what the sheet leaves.
+    const taller = Math.max(0, Math.min(this.bottomInset, height / 2));
+    this.camera.aspect = (width + wider) / Math.max(1, height + taller);
+    if (wider > 0 || taller > 0) this.camera.setViewOffset(width + wider, height + taller, Math.max(0, shift), taller, width, height);
     else this.camera.clearViewOffset();
     this.camera.updateProjectionMatrix();
   }
@@ -175,6 +185,53 @@ export class Stage {
     this.camera.position.add(delta);
   }
 
+  /**
+   * Keeps a region in view, eased (the crowd wanders: its centre and size change slowly): the
+   * camera's target moves towards `center` and, unless the user chose a zoom of their own, its
+   * distance towards one that fits `radius`. The view's direction stays the user's.
+   */
+  keepInView(center: THREE.Vector3, radius: number, dt: number, followsSelection = false): void {
+    const ease = 1 - Math.exp(-dt * 1.5);
+    const target = this.controls.target;
+    if (!followsSelection) {
+      const delta = center.clone().sub(target).multiplyScalar(ease);
+      target.add(delta);
+      this.camera.position.add(delta);
+    }
+    if (!this.autoZoom) return;
+    const offset = this.camera.position.clone().sub(target);
+    const fov = THREE.MathUtils.degToRad(this.camera.fov);
+    // The narrower of the two view angles must hold the region (a phone is tall and narrow),
+    // seen from the region's middle or, following a character, from that character.
+    const half = Math.min(fov / 2, Math.atan(Math.tan(fov / 2) * Math.min(1, this.camera.aspect)));
+    const reach = followsSelection ? radius + center.distanceTo(target) : radius;
+    const wanted = Math.min(this.controls.maxDistance, Math.max(4, (reach * 1.1) / Math.sin(half)));
+    const distance = offset.length();
+    offset.multiplyScalar((distance + (wanted - distance) * ease) / distance);
+    this.camera.position.copy(target).add(offset);
+    const extent = Math.max(SHADOW_EXTENT, Math.min(60, radius * 1.3));
+    const shadowCamera = this.sun.shadow.camera;
+    if (shadowCamera.right !== extent) {
+      shadowCamera.left = shadowCamera.bottom = -extent;
+      shadowCamera.right = shadowCamera.top = extent;
+      shadowCamera.updateProjectionMatrix();
+    }
+  }
+
+  /**
+   * The camera's distance follows the crowd (keepInView) until the user zooms (wheel, pinch):
+   * their zoom is kept from then on; a new scene or the panel's "frame the crowd" gives it back.
+   */
+  autoZoom = true;
+
+  private watchUserZoom(canvas: HTMLCanvasElement): void {
+    // Wheel and pinch are the zoom gestures (a one-finger or mouse drag orbits).
+    canvas.addEventListener('wheel', () => (this.autoZoom = false), { passive: true });
+    canvas.addEventListener('touchmove', (event) => {
+      if (event.touches.length >= 2) this.autoZoom = false;
+    }, { passive: true });
+  }
+
   render(): void {
     this.controls.update();
     this.followTarget();
@@ -182,26 +239,79 @@ export class Stage {
     this.renderer.render(this.scene, this.camera);
   }
 
-  /** One metre of ground: its colour with a darker line along two edges, tiled over the plane. */
+  /**
+   * Five metres of ground: its colour with a faint line every metre and a stronger one every
+   * five, tiled over the plane (a scale one can read at a glance: a biped is 1.8 m tall).
+   */
   private groundTexture(): THREE.Texture {
-    const size = 128;
+    const metre = 96;
+    const size = 5 * metre;
     const canvas = document.createElement('canvas');
     canvas.width = canvas.height = size;
     const ctx = canvas.getContext('2d');
     if (!ctx) throw new Error('no 2D canvas context for the ground texture');
     ctx.fillStyle = `#${new THREE.Color(GROUND).getHexString()}`;
     ctx.fillRect(0, 0, size, size);
-    ctx.fillStyle = 'rgba(40, 48, 34, 0.22)';
-    ctx.fillRect(0, 0, size, 2);
-    ctx.fillRect(0, 0, 2, size);
+    ctx.fillStyle = 'rgba(40, 48, 34, 0.18)';
+    for (let i = 1; i < 5; i++) {
+      ctx.fillRect(0, i * metre, size, 2);
+      ctx.fillRect(i * metre, 0, 2, size);
+    }
+    ctx.fillStyle = 'rgba(40, 48, 34, 0.34)';
+    ctx.fillRect(0, 0, size, 4);
+    ctx.fillRect(0, 0, 4, size);
     const texture = new THREE.CanvasTexture(canvas);
     texture.colorSpace = THREE.SRGBColorSpace;
     texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
-    texture.repeat.set(GROUND_SIZE, GROUND_SIZE);
+    texture.repeat.set(GROUND_SIZE / 5, GROUND_SIZE / 5);
     // Lines stay crisp at grazing angles, where the ground is seen most.
     texture.anisotropy = this.renderer.capabilities.getMaxAnisotropy();
     return texture;
   }
+
+  /** A sky: the horizon's colour (the fog's) rising to a deeper blue overhead. */
+  private skyTexture(): THREE.Texture {
+    const canvas = document.createElement('canvas');
+    canvas.width = 2;
+    canvas.height = 256;
+    const ctx = canvas.getContext('2d');
+    if (!ctx) throw new Error('no 2D canvas context for the sky');
+    const gradient = ctx.createLinearGradient(0, 0, 0, 256);
+    gradient.addColorStop(0, `#${new THREE.Color(ZENITH).getHexString()}`);
+    gradient.addColorStop(0.5, `#${new THREE.Color(SKY).getHexString()}`);
+    gradient.addColorStop(1, `#${new THREE.Color(SKY).getHexString()}`);
+    ctx.fillStyle = gradient;
+    ctx.fillRect(0, 0, 2, 256);
+    const texture = new THREE.CanvasTexture(canvas);
+    texture.colorSpace = THREE.SRGBColorSpace;
+    // An equirectangular map: its middle row is the horizon, its top the zenith.
+    texture.mapping = THREE.EquirectangularReflectionMapping;
+    return texture;
+  }
+
+  /**
+   * The wandering crowd's arena (native/src/sim/wander.h): a faint ring on the ground at its
+   * edge, or nothing (null: wandering is off).
+   */
+  setArena(radius: number | null): void {
+    if (radius === null) {
+      if (this.arena) this.arena.visible = false;
+      return;
+    }
+    if (!this.arena) {
+      this.arena = new THREE.Mesh(
+        new THREE.RingGeometry(0.985, 1, 128).rotateX(-Math.PI / 2),
+        new THREE.MeshBasicMaterial({ color: 0xffffff, transparent: true, opacity: 0.45, depthWrite: false }),
+      );
+      this.arena.renderOrder = 1;
+      this.scene.add(this.arena);
+    }
+    this.arena.visible = true;
+    this.arena.scale.set(radius, 1, radius);
+    this.arena.position.y = (this.terrain?.plane ?? 0) + 0.012;
+  }
+
+  private arena: THREE.Mesh | null = null;
 
   /** Keeps the shadow-casting area centred where the camera looks. */
   private followTarget(): void {

@@ -60,6 +60,7 @@ export interface GaitlabModule {
   _gl_sim_reset_character(sim: number, id: number): number;
   _gl_sim_remove_character(sim: number, id: number): number;
   _gl_sim_set_auto_reset(sim: number, seconds: number): number;
+  _gl_sim_set_wander(sim: number, id: number, arenaRadius: number): number;
   _gl_sim_character_count(sim: number): number;
   _gl_sim_character_info(sim: number, out: number, capacity: number): number;
   // Terrain.
@@ -362,6 +363,11 @@ export class Simulation {
     return this.module._gl_sim_body_count(this.sim);
   }
 
+  /** Characters in the scene (gl_sim_character_count). */
+  get characterCount(): number {
+    return this.module._gl_sim_character_count(this.sim);
+  }
+
   get threads(): number {
     return this.module._gl_sim_threads(this.sim);
   }
@@ -400,6 +406,14 @@ export class Simulation {
 
   removeCharacter(id: number): void {
     this.check('gl_sim_remove_character', this.module._gl_sim_remove_character(this.sim, id));
+  }
+
+  /**
+   * Character `id` (or every character now in the scene with -1) wanders inside an arena of
+   * `arenaRadius` metres about the origin; 0 stops it (native/src/sim/wander.h).
+   */
+  setWander(id: number, arenaRadius: number): void {
+    this.check('gl_sim_set_wander', this.module._gl_sim_set_wander(this.sim, id, arenaRadius));
   }
 
   setAutoReset(seconds: number): void {

@@ -36,8 +36,19 @@ export type Vec3 = [number, number, number];
  * is the same thing: no step happens in between.
  */
 export type SceneCommand =
-  /** Steering goal of one character, or of all: forward speed (m/s) and turn rate (rad/s, + = left). */
-  | { type: 'setGoal'; id: number | 'all'; speed: number; turn: number }
+  /**
+   * Steering goal of one character, or of all (of type `character` only, when given): forward
+   * speed (m/s) and turn rate (rad/s, + = left). A character given a goal of its own stops
+   * wandering (it is steered by hand); while the crowd wanders, a goal for all sets their speed
+   * and wandering keeps choosing their turn rate.
+   */
+  | { type: 'setGoal'; id: number | 'all'; speed: number; turn: number; character?: CharacterType }
+  /**
+   * Arena wandering (native/src/sim/wander.h): on, every character but the learner wanders in
+   * an arena sized for the crowd (characters added later too); off, each keeps its last goal.
+   * With `id`, only that character (back to wandering, or out of it).
+   */
+  | { type: 'wander'; on: boolean; id?: number }
   /** A box of half size `half` (m) from `from` with `velocity` (m/s). */
   | { type: 'throwBox'; from: Vec3; velocity: Vec3; half: number }
   /** Holds point `local` (segment frame) of segment `segment` of character `id` on a spring to `target`. */
@@ -91,7 +102,17 @@ export interface CharacterStatus {
   goal: { speed: number; turn: number };
   /** Gait phase in [0, 1). */
   phase: number;
+  /** Wandering chooses its turn rate (else it keeps the goal it was given). */
+  wanders?: boolean;
 }
+
+/**
+ * Most characters the demo page holds. The module's render buffer has room for 16384 bodies
+ * (910 quadrupeds), but its fixed 256 MB of memory runs out first (an abort near 600
+ * quadrupeds); 256 characters of either type fit with room to spare, and stay near real time on
+ * a 4-core machine. The page refuses more, saying so.
+ */
+export const MAX_CHARACTERS = 256;
 
 /** Slow motion: simulated seconds per wall-clock second the worker's clock aims for. */
 export const TIME_SCALES = [1, 0.5, 0.25] as const;
@@ -143,6 +164,8 @@ export interface SimStats {
   learner: number | null;
   /** The ground the simulation has now. */
   terrain: TerrainKind;
+  /** Arena wandering: on or off for the crowd, and the arena's radius (m, about the origin). */
+  wander?: { on: boolean; arenaRadius: number };
 }
 
 /** Sim worker → main thread. */

@@ -28,6 +28,7 @@ import type { TerrainKind } from './terrain-grid';
 import { CHARACTER_TYPES, typeOfKind } from '../gait/character';
 import {
   errorMessage,
+  MAX_CHARACTERS,
   type CharacterStatus,
   type CharacterType,
   type SceneCommand,
@@ -62,6 +63,15 @@ const post = (event: SimEvent) => scope.postMessage(event);
 const COMMAND_LOG_LIMIT = 10_000;
 
 type Goal = { speed: number; turn: number };
+
+/**
+ * The wandering crowd's arena (native/src/sim/wander.h), a circle about the origin sized for the
+ * crowd: about 28 m² per character (3 m × √n of radius), and at least 12 m, so that a biped at
+ * 1 m/s, which needs 7.7 m to turn round at the 0.3 rad/s wandering allows, has room to wander.
+ */
+export function arenaRadiusFor(characters: number): number {
+  return Math.max(12, 3 * Math.sqrt(characters));
+}
 const sameGoal = (a: Goal, b: Goal) => a.speed === b.speed && a.turn === b.turn;
 
 /**
@@ -113,6 +123,11 @@ class WorkerScene {
   private autoResetSeconds = 0;
   /** The ground: kept across new scenes, like the goal and the auto-reset. */
   private terrain: TerrainKind;
+  /** Arena wandering of the crowd (on by default: the demo's crowd stays in view); kept across scenes. */
+  private wandering = true;
+  /** The characters wandering now (a character steered by hand leaves it; the learner is never in it). */
+  private readonly wanderers = new Set<number>();
+  private arenaRadius = arenaRadiusFor(0);
 
   /**
    * The optimize panel's learner (scene command 'learner'): its id, the command that made it
@@ -176,6 +191,7 @@ class WorkerScene {
     this.commandLog.length = 0;
     this.commandsApplied = 0;
     this.learner = null;
+    this.wanderers.clear();
     // A mixed crowd: bipeds and quadrupeds alternate, so each type spreads over the whole grid
     // (the first group added sizes the layout's grid).
     this.addCharacters(options.characters, ALTERNATING);
@@ -189,6 +205,7 @@ class WorkerScene {
       // addCharacters gives every character it spawns.
       ...(sameGoal(lastGoals.biped, lastGoals.quadruped) ? [{ type: 'setGoal' as const, id: 'all' as const, ...lastGoals.biped }] : []),
       { type: 'autoReset', seconds: this.autoResetSeconds },
+      ...(this.wandering ? [{ type: 'wander' as const, on: true }] : []),
       ...Object.entries(this.typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
     ];
     for (const command of carried) this.commandLog.push({ step: 0, command });
@@ -239,6 +256,37 @@ class WorkerScene {
         }
       }
     }
+    if (this.wandering && added > 0) {
+      // The newcomers wander; the arena grows with the crowd (one arena: the last radius given).
+      // Characters steered by hand stay so.
+      this.arenaRadius = arenaRadiusFor(info.length / INFO.fields - (this.learner ? 1 : 0));
+      for (let o = info.length - added * INFO.fields; o < info.length; o += INFO.fields) {
+        sim.setWander(info[o + INFO.id], this.arenaRadius);
+        this.wanderers.add(info[o + INFO.id]);
+      }
+    }
+  }
+
+  /**
+   * Wandering on or off for every wanderer (on: every character but the learner, in an arena
+   * sized for the crowd now; the module keeps one arena, the last radius given).
+   */
+  private setWander(on: boolean): void {
+    const sim = this.sim;
+    if (!sim) return;
+    const info = sim.characterInfo();
+    const ids: number[] = [];
+    for (let o = 0; o < info.length; o += INFO.fields) if (info[o + INFO.id] !== this.learner?.id) ids.push(info[o + INFO.id]);
+    this.arenaRadius = arenaRadiusFor(ids.length);
+    if (!on) {
+      for (const id of this.wanderers) sim.setWander(id, 0);
+      this.wanderers.clear();
+      return;
+    }
+    for (const id of ids) {
+      sim.setWander(id, this.arenaRadius);
+      this.wanderers.add(id);
+    }
   }
 
   /**
@@ -260,11 +308,37 @@ class WorkerScene {
     const sim = this.sim;
     if (!sim) return;
     switch (command.type) {
-      case 'setGoal':
-        if (command.id === 'all') {
-          for (const kind of CHARACTER_TYPES) this.lastGoals[kind] = { speed: command.speed, turn: command.turn };
+      case 'setGoal': {
+        const goal = { speed: command.speed, turn: command.turn };
+        if (command.id !== 'all') {
+          // Steered by hand: it leaves the wandering crowd.
+          sim.setGoal(command.id, goal.speed, goal.turn);
+          if (this.wanderers.delete(command.id)) sim.setWander(command.id, 0);
+          return;
         }
-        sim.setGoal(command.id === 'all' ? -1 : command.id, command.speed, command.turn);
+        const kinds = command.character ? [command.character] : CHARACTER_TYPES;
+        for (const kind of kinds) this.lastGoals[kind] = goal;
+        if (!command.character) {
+          sim.setGoal(-1, goal.speed, goal.turn);
+          return;
+        }
+        const info = sim.characterInfo();
+        for (let o = 0; o < info.length; o += INFO.fields) {
+          if (info[o + INFO.kind] === Kind[command.character] && info[o + INFO.id] !== this.learner?.id) sim.setGoal(info[o + INFO.id], goal.speed, goal.turn);
+        }
+        return;
+      }
+      case 'wander':
+        if (command.id === undefined) {
+          this.wandering = command.on;
+          this.setWander(command.on);
+        } else if (command.on && command.id !== this.learner?.id) {
+          sim.setWander(command.id, this.arenaRadius);
+          this.wanderers.add(command.id);
+        } else if (!command.on) {
+          sim.setWander(command.id, 0);
+          this.wanderers.delete(command.id);
+        }
         return;
       case 'throwBox':
         sim.throwBox(command.from, command.velocity, command.half);
@@ -287,11 +361,22 @@ class WorkerScene {
       }
       case 'remove':
         if (this.learner?.id === command.id) this.learner = null;
+        this.wanderers.delete(command.id);
         sim.removeCharacter(command.id);
         return;
-      case 'add':
-        this.addCharacters(Math.max(0, Math.min(64, Math.floor(command.count))), Kind[command.kind]);
+      case 'add': {
+        const room = MAX_CHARACTERS - sim.characterCount;
+        const asked = Math.max(0, Math.min(64, Math.floor(command.count)));
+        if (asked > room) {
+          post({ type: 'commandError', message: `the crowd is at its limit: the page holds at most ${MAX_CHARACTERS} characters (${room} more)` });
+          return;
+        }
+        const before = sim.characterCount;
+        this.addCharacters(asked, Kind[command.kind]);
+        const added = sim.characterCount - before;
+        if (added < asked) post({ type: 'commandError', message: `only ${added} of ${asked} characters were added: the scene is full` });
         return;
+      }
       case 'autoReset':
         this.autoResetSeconds = Math.max(0, command.seconds);
         sim.setAutoReset(this.autoResetSeconds);
@@ -398,6 +483,7 @@ class WorkerScene {
         fallenSeconds: info[o + INFO.fallenSeconds],
         goal: { speed: info[o + INFO.goalSpeed], turn: info[o + INFO.goalTurn] },
         phase: info[o + INFO.phase],
+        wanders: this.wanderers.has(info[o + INFO.id]),
       });
     }
     return out;
@@ -421,6 +507,7 @@ class WorkerScene {
       commandsApplied: this.commandsApplied,
       learner: this.learner?.id ?? null,
       terrain: this.terrain,
+      wander: { on: this.wandering, arenaRadius: this.arenaRadius },
     });
     this.stepWallMs = 0;
     this.stepsTimed = 0;

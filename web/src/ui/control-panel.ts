@@ -2,9 +2,27 @@
 // crowd (add, remove, reset, fallen characters), steering, ground (flat, slope, bumps), and the
 // gait's share/export buttons. It only sends commands; what it shows follows the worker's reports.
 import GUI, { type Controller } from 'lil-gui';
+import { guardNumberController } from './field-check';
 import { CHARACTER_TYPES } from '../gait/character';
 import { TIME_SCALES, type CharacterType, type TimeScale } from '../sim/protocol';
 import { TERRAIN_KINDS, type TerrainKind } from '../sim/terrain-grid';
+
+/**
+ * The speeds each type is measured to walk at (README, Walking, from `node bench/walking.mjs`):
+ * the biped at 0.5 and 1.0 m/s, the quadruped's trot at 0.4 and 0.8 m/s, with no fall in 60 s
+ * and on ±5° slopes and bumps. The module exposes one speed per type (gl_cruise_speed, the one
+ * each is tuned for, inside these ranges); these ranges are the measured ones: beyond them the
+ * presets are not known to walk, so the sliders stop there.
+ */
+export const WALKING_SPEEDS: Record<CharacterType, { min: number; max: number }> = {
+  biped: { min: 0.5, max: 1.0 },
+  quadruped: { min: 0.4, max: 0.8 },
+};
+/** The turn rates both presets are measured to follow (README, Walking: ±0.3 rad/s), in °/s. */
+export const MAX_TURN_DEGREES = 17;
+
+/** Who the steering acts on: the selected character, or every character (per type). */
+export type SteerTarget = { id: number; type: CharacterType } | 'all';
 
 export interface PanelActions {
   togglePause(): void;
@@ -16,7 +34,10 @@ export interface PanelActions {
   resetSelected(): void;
   resetFallen(): void;
   autoReset(seconds: number): void;
-  steer(speed: number, turn: number, target: 'selected' | 'all'): void;
+  /** A goal for `target` (for 'all': each type at its own speed, the same turn rate). */
+  steer(target: SteerTarget, goal: { speed: Record<CharacterType, number>; turn: number }): void;
+  /** Arena wandering on or off: of the crowd, or of the selected character. */
+  wander(on: boolean, target: SteerTarget): void;
   follow(on: boolean): void;
   deselect(): void;
   /** The ground: flat, a ±5° slope, or 3 cm bumps. */
@@ -31,18 +52,30 @@ export class ControlPanel {
     addType: 'biped' as CharacterType,
     addCount: 1,
     autoResetSeconds: 0,
-    speed: 1.0,
+    bipedSpeed: 1.0,
+    quadrupedSpeed: 0.4,
     turnDegrees: 0,
-    steer: 'all' as 'selected' | 'all',
-    follow: false,
+    /** What the steering acts on, as the panel says it. */
+    steering: 'everyone',
+    wander: true,
+    follow: true,
     terrain: 'flat' as TerrainKind,
   };
   private readonly pause: Controller;
   private readonly stepButton: Controller;
   private readonly selectionButtons: Controller[];
-  private readonly steerTarget: Controller;
+  private readonly steerLabel: Controller;
+  private readonly speedControls: Record<CharacterType, Controller>;
+  private readonly turnControl: Controller;
+  private readonly wanderControl: Controller;
+  /** The selection the steering acts on, or 'all'. */
+  private target: SteerTarget = 'all';
+  /** The crowd's wandering as last reported (the switch shows the selection's when one is selected). */
+  private crowdWanders = true;
   private readonly terrainControl: Controller;
   readonly gaitFolder: GUI;
+  /** Beside "Add characters": why an add was refused (the crowd's limit). */
+  private readonly limitNote: HTMLElement;
 
   constructor(actions: PanelActions) {
     const v = this.values;
@@ -59,8 +92,13 @@ export class ControlPanel {
 
     const crowd = this.gui.addFolder('Crowd');
     crowd.add(v, 'addType', [...CHARACTER_TYPES]).name('type to add');
-    crowd.add(v, 'addCount', 1, 16, 1).name('how many');
-    crowd.add({ add: () => actions.add(v.addType, v.addCount) }, 'add').name('Add characters');
+    guardNumberController(crowd.add(v, 'addCount', 1, 16, 1).name('how many'), 1, 16, 'how many');
+    const addButton = crowd.add({ add: () => actions.add(v.addType, v.addCount) }, 'add').name('Add characters');
+    this.limitNote = document.createElement('div');
+    this.limitNote.className = 'panel-limit';
+    this.limitNote.setAttribute('role', 'status');
+    this.limitNote.hidden = true;
+    addButton.domElement.after(this.limitNote);
     const resetOne = crowd.add({ reset: () => actions.resetSelected() }, 'reset').name('Reset selected');
     const removeOne = crowd.add({ remove: () => actions.removeSelected() }, 'remove').name('Remove selected');
     const deselect = crowd.add({ deselect: () => actions.deselect() }, 'deselect').name('Deselect');
@@ -69,14 +107,39 @@ export class ControlPanel {
       .add(v, 'autoResetSeconds', 0, 10, 0.5)
       .name('auto-reset after (s)')
       .onFinishChange((s: number) => actions.autoReset(s));
+    guardNumberController(crowd.controllers[crowd.controllers.length - 1], 0, 10, 'auto-reset');
     this.selectionButtons = [resetOne, removeOne, deselect];
 
     const steer = this.gui.addFolder('Steering');
-    const send = () => actions.steer(v.speed, (v.turnDegrees * Math.PI) / 180, v.steer);
-    steer.add(v, 'speed', -0.5, 2, 0.05).name('speed (m/s)').onChange(send).listen();
-    steer.add(v, 'turnDegrees', -60, 60, 1).name('turn (°/s)').onChange(send).listen();
-    this.steerTarget = steer.add(v, 'steer', ['selected', 'all']).name('steer').listen();
-    steer.add(v, 'follow').name('follow selected').onChange((on: boolean) => actions.follow(on)).listen();
+    this.steerLabel = steer.add(v, 'steering').name('steers').disable().listen();
+    this.steerLabel.domElement.classList.add('steer-target');
+    const send = () =>
+      actions.steer(this.target, { speed: { biped: v.bipedSpeed, quadruped: v.quadrupedSpeed }, turn: (v.turnDegrees * Math.PI) / 180 });
+    this.speedControls = {
+      biped: steer.add(v, 'bipedSpeed', WALKING_SPEEDS.biped.min, WALKING_SPEEDS.biped.max, 0.05).name('biped speed (m/s)').onChange(send).listen(),
+      quadruped: steer
+        .add(v, 'quadrupedSpeed', WALKING_SPEEDS.quadruped.min, WALKING_SPEEDS.quadruped.max, 0.05)
+        .name('dog speed (m/s)')
+        .onChange(send)
+        .listen(),
+    };
+    guardNumberController(this.speedControls.biped, WALKING_SPEEDS.biped.min, WALKING_SPEEDS.biped.max, 'biped speed');
+    guardNumberController(this.speedControls.quadruped, WALKING_SPEEDS.quadruped.min, WALKING_SPEEDS.quadruped.max, 'dog speed');
+    for (const type of CHARACTER_TYPES) {
+      this.speedControls[type].domElement.title = `the speeds a ${type} is measured to walk at (README, Walking): ${WALKING_SPEEDS[type].min}–${WALKING_SPEEDS[type].max} m/s`;
+    }
+    this.turnControl = steer.add(v, 'turnDegrees', -MAX_TURN_DEGREES, MAX_TURN_DEGREES, 1).name('turn (°/s)').onChange(send).listen();
+    guardNumberController(this.turnControl, -MAX_TURN_DEGREES, MAX_TURN_DEGREES, 'turn');
+    this.turnControl.domElement.title = 'the turn rates the gaits are measured to follow: ±0.3 rad/s; while wandering, wandering chooses it';
+    this.wanderControl = steer
+      .add(v, 'wander')
+      .name('wander in the arena')
+      .onChange((on: boolean) => {
+        actions.wander(on, this.target);
+        this.updateSteering();
+      })
+      .listen();
+    steer.add(v, 'follow').name('camera follows selected').onChange((on: boolean) => actions.follow(on)).listen();
 
     const ground = this.gui.addFolder('Ground');
     this.terrainControl = ground
@@ -89,6 +152,12 @@ export class ControlPanel {
 
     this.gaitFolder = this.gui.addFolder('Gait');
     this.setSelection(null);
+  }
+
+  /** A refusal beside "Add characters" (null clears it). */
+  showCrowdLimit(text: string | null): void {
+    this.limitNote.textContent = text ?? '';
+    this.limitNote.hidden = text === null;
   }
 
   /** Shows the ground the simulation has (after a change it confirmed, or a new scene). */
@@ -104,19 +173,56 @@ export class ControlPanel {
     else this.stepButton.disable();
   }
 
-  /** Enables what needs a selected character; the steering shows that character's goal. */
-  setSelection(selected: { goal: { speed: number; turn: number } } | null): void {
+  /**
+   * Enables what needs a selected character. Steering acts on the selected character when there
+   * is one (the panel names it, shows its goal and offers only its type's speed), else on
+   * everyone.
+   */
+  setSelection(selected: { id: number; type: CharacterType; goal: { speed: number; turn: number }; wanders?: boolean } | null): void {
     for (const c of this.selectionButtons) {
       if (selected) c.enable();
       else c.disable();
     }
+    const v = this.values;
     if (!selected) {
-      this.values.steer = 'all';
-      this.steerTarget.disable();
+      this.target = 'all';
+      v.wander = this.crowdWanders;
     } else {
-      this.steerTarget.enable();
-      this.values.speed = selected.goal.speed;
-      this.values.turnDegrees = Math.round((selected.goal.turn * 180) / Math.PI);
+      this.target = { id: selected.id, type: selected.type };
+      v[selected.type === 'biped' ? 'bipedSpeed' : 'quadrupedSpeed'] = selected.goal.speed;
+      v.turnDegrees = Math.round((selected.goal.turn * 180) / Math.PI);
+      v.wander = selected.wanders ?? false;
     }
+    this.updateSteering();
+  }
+
+  /** Follows the worker's report of the crowd's wandering (the switch, when nobody is selected). */
+  setCrowdWander(on: boolean): void {
+    this.crowdWanders = on;
+    if (this.target === 'all' && this.values.wander !== on) {
+      this.values.wander = on;
+      this.updateSteering();
+    }
+  }
+
+  /** The target the steering acts on now. */
+  get steerTarget(): SteerTarget {
+    return this.target;
+  }
+
+  /** The label, and which controls act: a selection's own type only; turning is wandering's while it wanders. */
+  private updateSteering(): void {
+    const t = this.target;
+    const v = this.values;
+    v.steering = t === 'all' ? 'everyone' : `${t.type} #${t.id} only`;
+    for (const type of CHARACTER_TYPES) {
+      if (t === 'all' || t.type === type) this.speedControls[type].enable();
+      else this.speedControls[type].disable();
+    }
+    // Wandering chooses the crowd's turn rate; a selected character steered by hand leaves it.
+    if (t === 'all' && v.wander) this.turnControl.disable();
+    else this.turnControl.enable();
+    this.steerLabel.updateDisplay();
+    this.wanderControl.updateDisplay();
   }
 }

@@ -1,6 +1,8 @@
 // Editor of one motion graph (thesis §3.3): a piecewise-linear function with 4 knots at
 // φ = 0, 1/3, 2/3, 1 (native/src/gait/graph.h). Drag a knot up or down, or type its value;
-// values are clamped to the schema's bounds. A vertical line marks the current phase.
+// a typed value outside the schema's bounds is refused (field-check.ts), a dragged one stops at
+// them. A vertical line marks the current phase.
+import { readNumberField, showFieldMessage } from './field-check';
 
 export interface CurveEditorOptions {
   name: string;
@@ -52,14 +54,18 @@ export class CurveEditor {
       input.max = String(options.max);
       input.setAttribute('aria-label', `${options.name} knot ${k + 1} (φ = ${['0', '⅓', '⅔', '1'][k] ?? k})`);
       input.addEventListener('change', () => {
-        const typed = Number(input.value);
-        if (!Number.isFinite(typed)) {
-          this.syncInputs();
+        // Refused (empty, not a number, out of range): a message beside the fields, nothing
+        // changes, and the field shows the value applied (field-check.ts).
+        const reading = readNumberField(input.value, options.min, options.max);
+        if ('error' in reading) {
+          showFieldMessage(inputs, `${options.name} knot ${k + 1}: ${reading.error}; not applied`);
+          input.value = String(Number(this.values[k].toPrecision(5)));
           return;
         }
+        showFieldMessage(inputs, null);
         options.onEditStart();
-        this.values[k] = this.clamp(typed);
-        this.syncInputs();
+        this.values[k] = reading.value;
+        this.syncInputs(true);
         this.draw();
         options.onChange([...this.values], true);
       });
@@ -83,7 +89,8 @@ export class CurveEditor {
   set(values: number[], force = false): void {
     if (this.dragging >= 0 && !force) return;
     this.values = [...values];
-    this.syncInputs();
+    // Every field, the focused one too: after an undo in a field it shows the value undone.
+    this.syncInputs(true);
     this.draw();
   }
 
@@ -98,9 +105,10 @@ export class CurveEditor {
     return Math.min(this.options.max, Math.max(this.options.min, v));
   }
 
-  private syncInputs(): void {
+  /** The fields show the values (`all`: the focused one too, after its own edit was applied). */
+  private syncInputs(all = false): void {
     this.inputs.forEach((input, k) => {
-      if (document.activeElement !== input) input.value = String(Number(this.values[k].toPrecision(5)));
+      if (all || document.activeElement !== input) input.value = String(Number(this.values[k].toPrecision(5)));
     });
   }
 

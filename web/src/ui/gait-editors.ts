@@ -7,6 +7,7 @@
 // Everything is driven by the parameter schema the module reports (gl_schema_json): names,
 // groups, bounds, units, descriptions, and which leg or leg frame a parameter belongs to are
 // never written out here. Gaits from outside go through GaitTransfer (gait-transfer.ts).
+import { guardNumberController } from './field-check';
 import type GUI from 'lil-gui';
 import { CurveEditor } from './curve-editor';
 import { GaitDiagram, type LegTiming } from './gait-diagram';
@@ -34,7 +35,16 @@ const QUADRUPED_PATTERNS: Record<string, (leg: SchemaLeg) => [number, number]> =
   // Fore pair (the first leg frame's legs), then hind pair.
   bound: (leg) => [leg.legFrame === 0 ? 0 : 0.5, 0.5],
 };
-const QUADRUPED_GAITS = [...Object.keys(QUADRUPED_GAIT_FILES), ...Object.keys(QUADRUPED_PATTERNS)];
+/** The choices as offered: the patterns no gait is tuned for are marked experimental (they fall). */
+const QUADRUPED_GAITS: Record<string, string> = Object.fromEntries([
+  ...Object.keys(QUADRUPED_GAIT_FILES).map((name) => [name, name]),
+  ...Object.keys(QUADRUPED_PATTERNS).map((name) => [`${name} (experimental: falls)`, name]),
+]);
+
+/** A field for numbers: the knots' (type number) and lil-gui's number controllers' (text). */
+function isNumberField(input: HTMLInputElement): boolean {
+  return input.type === 'number' || input.closest('.lil-number') !== null;
+}
 
 /** A leg's gait-diagram parameters: its duty factor and step trigger entries (§3.1.1). */
 interface DiagramLeg {
@@ -135,7 +145,9 @@ export class GaitEditors {
     document.body.append(this.editorsPanel);
 
     window.addEventListener('keydown', (e) => {
-      if (!(e.ctrlKey || e.metaKey) || e.target instanceof HTMLInputElement) return;
+      // In a number field undo is the gait's too, as outside it (the field then shows the value
+      // undone); a text field (the share link) keeps its own.
+      if (!(e.ctrlKey || e.metaKey) || (e.target instanceof HTMLInputElement && !isNumberField(e.target))) return;
       if (e.key === 'z' && !e.shiftKey) this.undo();
       else if (e.key === 'y' || (e.key === 'z' && e.shiftKey) || e.key === 'Z') this.redo();
       else return;
@@ -317,6 +329,7 @@ export class GaitEditors {
         .name(`${owner ? `${owner}.` : ''}${e.field}${e.unit ? ` (${e.unit})` : ''}`)
         .onChange((v: number) => this.edit({ [e.name]: v }));
       c.domElement.title = `${e.name}: ${e.description}`;
+      guardNumberController(c, e.min, e.max, e.name);
       // A drag of a slider is one undo step: remember the state when it starts.
       c.domElement.addEventListener('pointerdown', () => this.model.remember(), { capture: true });
       c.domElement.addEventListener('focusin', () => this.model.remember());

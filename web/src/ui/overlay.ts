@@ -54,7 +54,17 @@ export class Overlay {
     parent.append(this.hud, this.notice);
   }
 
-  show(f: HudFigures): void {
+  /**
+   * The heads-up line; `compact` (phones) keeps it to one short line: frame rate, real-time
+   * factor, characters and the selection.
+   */
+  show(f: HudFigures, compact = false): void {
+    if (compact) {
+      const rate = f.paused ? 'paused' : `${f.realtimeFactor.toFixed(2)}×`;
+      const down = f.fallen ? ` (${f.fallen} down)` : '';
+      this.line.textContent = [`${f.fps.toFixed(0)} FPS`, rate, `${f.characters} characters${down}`, ...(f.selected ? [f.selected] : [])].join(' · ');
+      return;
+    }
     const rate = f.paused ? 'paused' : `${f.realtimeFactor.toFixed(2)}× real time${f.timeScale !== 1 ? ` (slow motion ${f.timeScale}×)` : ''}`;
     const parts = [
       `${f.fps.toFixed(0)} FPS`,

@@ -7,6 +7,7 @@
 //
 // This worker is also the Emscripten "main thread" of the module, so the module's pthread pool
 // consists of workers nested in this one.
+import { checkSimCommand } from './command-check';
 import { FixedStepClock } from './fixed-step-clock';
 import {
   ALTERNATING,
@@ -225,6 +226,12 @@ class WorkerScene {
     const { sim } = this;
     if (!sim) return;
     const added = sim.addCharacters(kindCode, count);
+    if (added < count) {
+      // The scene is full: say so with its real limits (gl_sim_room: the render buffer, and the
+      // memory the module can still afford) rather than adding fewer in silence.
+      const rooms = CHARACTER_TYPES.map((type) => `${sim.room(Kind[type])} more ${type}s`).join(', ');
+      post({ type: 'commandError', message: `added ${added} of ${count} characters: the scene is full (room now: ${rooms})` });
+    }
     const info = sim.characterInfo(); // the added characters are the last ones
     for (let o = info.length - added * INFO.fields; o < info.length; o += INFO.fields) {
       const id = info[o + INFO.id];
@@ -632,11 +639,35 @@ function handle(command: SimCommand): void {
 scope.onmessage = (event) => {
   if (scene?.hasFailed || failedEarly) return;
   try {
-    handle(event.data);
+    // Every message is checked before anything acts on it (command-check.ts): a refused one is
+    // answered with the field named, and the loop goes on.
+    const checked = checkSimCommand(event.data);
+    if (checked.ok) handle(checked.command);
+    else refuseMessage(event.data, checked.error, checked.request);
   } catch (error) {
     fail(error);
   }
 };
+
+/** Answers a refused message: a request gets its answer (with the refusal), anything else a commandError. */
+function refuseMessage(message: unknown, error: string, request: number | undefined): void {
+  const type = typeof message === 'object' && message !== null ? (message as { type?: unknown }).type : undefined;
+  if (type === 'init') {
+    fail(new Error(`the worker's options were refused: ${error}`));
+    return;
+  }
+  if (request !== undefined && (type === 'getParams' || type === 'getPreset' || type === 'normalize')) {
+    post({ type: 'params', request, json: null, error });
+    return;
+  }
+  const scene = type === 'scene' ? (message as { command?: { type?: unknown; request?: unknown } }).command : undefined;
+  const patchRequest = scene?.type === 'patchParams' ? scene.request : undefined;
+  if (typeof patchRequest === 'number' && Number.isInteger(patchRequest) && patchRequest >= 0) {
+    post({ type: 'patched', request: patchRequest, accepted: null, error });
+    return;
+  }
+  post({ type: 'commandError', message: `a message was refused: ${error}` });
+}
 
 // Errors outside the handlers above (e.g. thrown by the module's own callbacks).
 self.addEventListener('error', (event) => fail(event.error ?? event.message));

@@ -14,6 +14,7 @@
 #include "api/cli_bench.h"
 #include "api/handles.h"
 #include "api/limits.h"
+#include "body/morphology.h"
 #include "sim/capacity.h"
 #include "gait/defaults.h"
 #include "gait/heading.h"
@@ -130,9 +131,11 @@ int benchMaxCharacters(int legs) {
   const int64_t headroom = heapHeadroom();
   if (headroom < 0) return render;
   const int64_t left = std::max<int64_t>(0, headroom - kSimulationBytes);
-  const int64_t heap = legs == GL_LEGS_BIPED ? left / kBipedBytes
-                       : legs == GL_LEGS_QUADRUPED ? left / kQuadrupedBytes
-                                                   : 2 * (left / (kBipedBytes + kQuadrupedBytes));
+  const int biped = static_cast<int>(gaitlab::body::makeBiped().segments.size());
+  const int quadruped = static_cast<int>(gaitlab::body::makeQuadruped().segments.size());
+  const int64_t heap = legs == GL_LEGS_BIPED ? affordable(left, kBipedBytes, biped, 0)
+                       : legs == GL_LEGS_QUADRUPED ? affordable(left, kQuadrupedBytes, quadruped, 0)
+                                                   : 2 * affordable(left, kBipedBytes + kQuadrupedBytes, biped + quadruped, 0);
   return static_cast<int>(std::min<int64_t>(render, heap));
 }
 

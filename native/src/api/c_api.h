@@ -100,7 +100,7 @@ enum { GL_KIND_BIPED = 0, GL_KIND_QUADRUPED = 1, GL_KIND_BOX = 2 };
 GL_EXPORT int gl_sim_spawn(void* sim, int kind, double x, double z, double heading);
 
 // How many more things of `kind` (GL_KIND_*) the simulation can take now: the least of the
-// render buffer's room, the free ids, for boxes the most a scene holds (256, boxes of every
+// render buffer's room, the free ids, for boxes the most a scene holds (64, boxes of every
 // origin counted), and in the WASM build what its fixed heap can still afford at the measured
 // cost of each (sim/capacity.h). Every spawn refuses with GL_ERR_FULL, before allocating, when
 // this is 0. GL_ERR_ARGUMENT for another kind.

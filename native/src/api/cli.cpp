@@ -355,7 +355,6 @@ int optimizeCommand(int argc, char** argv) {
     std::fprintf(stderr, "gaitlab optimize: generation %d/%d  best %.6g%s  (%.2f s, about %.0f s left)\n",
                  gen.index, total, gen.bestObjective, gen.improved ? " *" : "", gen.seconds, left);
   }
-  std::signal(SIGINT, previous);
   const bool interrupted = g_interrupted != 0;
   if (interrupted) std::fprintf(stderr, "gaitlab optimize: interrupted; writing the best so far\n");
 
@@ -373,7 +372,11 @@ int optimizeCommand(int argc, char** argv) {
                {"evaluations", optimizer->evaluations()},
                {"interrupted", interrupted},
                {"date", utcNow()}};
-  if (!output.commit(gait::gaitFileJson(search.character, optimizer->best(), meta))) {
+  // Ctrl-C stays caught until the file is in place: a second one while it is written changes
+  // nothing (the write is short), rather than leaving the temporary file behind.
+  const bool committed = output.commit(gait::gaitFileJson(search.character, optimizer->best(), meta));
+  std::signal(SIGINT, previous);
+  if (!committed) {
     std::fprintf(stderr,
                  "gaitlab optimize: %s: %s; any previous file there is left as it was (best objective "
                  "%.6g, not saved)\n",

@@ -293,8 +293,9 @@ int runBenchCli(int argc, char** argv) {
   }
   if (!parseList(charactersText, 1, 2000, &characters, &error)) return benchError("--characters: " + error);
   for (int l : legs) {
-    // One simulation's render buffer bounds its bodies (Simulation::kRenderCapacity).
-    const int most = sim::maxCharacters(l), largest = *std::max_element(characters.begin(), characters.end());
+    // One simulation's render buffer bounds its bodies (Simulation::kRenderCapacity), and in
+    // the WASM build its fixed heap (gl_bench_max_characters, as gl_sim_room counts).
+    const int most = gl_bench_max_characters(l), largest = *std::max_element(characters.begin(), characters.end());
     if (largest > most)
       return benchError("--characters: " + std::to_string(largest) + " " + (l == sim::kMixed ? std::string("mixed characters") : l == 2 ? "bipeds" : "quadrupeds") +
                         " is more than a simulation holds (" + std::to_string(most) + ")");

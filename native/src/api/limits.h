@@ -43,8 +43,8 @@ constexpr int kMaxStepsPerCall = 12000;     // fixed steps of one gl_sim_step ca
 // ---- What a simulation holds ---------------------------------------------------------------
 // Boxes (props: the scene's, spawned and thrown). Boxes dropped on one spot all touch each
 // other: n boxes make n(n-1)/2 contact pairs, so 1000 on one spot cost 420 MB and 6.5 s for a
-// step natively; 256 cost well under a tenth of that.
-constexpr int kMaxBoxes = 256;
+// step natively, and 256 took 97 MB of the WASM build's heap; 64 take 4 MB.
+constexpr int kMaxBoxes = 64;
 // Characters: as many as the render buffer has room for (RenderPublisher::kCapacity bodies) and,
 // in the WASM build, as the heap can afford (capacity.h, which holds the measured costs).
 

@@ -22,4 +22,12 @@ int64_t heapHeadroom() {
 #endif
 }
 
+int64_t affordable(int64_t headroom, int64_t bytes, int bodies, int worldBodies) {
+  // k things (k >= 1) fit when headroom - (k-1)·bytes >= bytes + s·(W + k·b), s the solver bytes
+  // per body: k·(bytes + s·b) <= headroom - s·W.
+  const int64_t left = headroom - kSolverBytesPerBody * worldBodies;
+  if (left <= 0) return 0;
+  return left / (bytes + kSolverBytesPerBody * bodies);
+}
+
 }  // namespace gaitlab::sim

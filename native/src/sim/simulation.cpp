@@ -130,23 +130,26 @@ namespace {
 int64_t bytesOf(int kindOrBox) {
   return kindOrBox == 0 ? kBipedBytes : kindOrBox == 1 ? kQuadrupedBytes : kBoxBytes;
 }
-// How many things of `bytes` each the heap can still afford (natively: no heap limit).
-int heapRoom(int64_t bytes) {
+// How many things of `bytes` and `bodies` the heap can still afford (natively: no heap limit).
+int heapRoom(int64_t bytes, int bodies, int worldBodies) {
   const int64_t headroom = heapHeadroom();
   if (headroom < 0) return std::numeric_limits<int>::max();
-  return static_cast<int>(std::min<int64_t>(headroom / bytes, std::numeric_limits<int>::max()));
+  return static_cast<int>(std::min<int64_t>(affordable(headroom, bytes, bodies, worldBodies),
+                                            std::numeric_limits<int>::max()));
 }
 }  // namespace
 
 int Simulation::characterRoom(Character kind) const {
   const int segments = static_cast<int>((kind == Character::Biped ? biped_ : quadruped_).segments.size());
   const int render = (kRenderCapacity - render_.count()) / segments;
-  return std::max(0, std::min({render, ids_.room(), heapRoom(bytesOf(static_cast<int>(kind)))}));
+  // Every body of the scene counts towards the world's solver pools: one shard's world holds at
+  // most all of them.
+  return std::max(0, std::min({render, ids_.room(), heapRoom(bytesOf(static_cast<int>(kind)), segments, render_.count())}));
 }
 
 int Simulation::boxRoom() const {
   return std::max(0, std::min({kRenderCapacity - render_.count(), ids_.room(), limits::kMaxBoxes - boxes_,
-                               heapRoom(kBoxBytes)}));
+                               heapRoom(kBoxBytes, 1, render_.count())}));
 }
 
 std::string Simulation::fullReason(int kindOrBox) const {
@@ -157,9 +160,9 @@ std::string Simulation::fullReason(int kindOrBox) const {
   if (kRenderCapacity - render_.count() < segments)
     return "the render buffer is full (" + std::to_string(kRenderCapacity) + " bodies)";
   if (ids_.room() < 1) return "every id is in use";
-  return "the module's memory is nearly full (" + std::to_string(bytesOf(kindOrBox) / 1024) +
-         " KiB needed, " + std::to_string(std::max<int64_t>(0, heapHeadroom()) / 1024) +
-         " KiB left beside the reserve)";
+  return "the module's memory is nearly full (" + std::to_string(std::max<int64_t>(0, heapHeadroom()) >> 20) +
+         " MiB left beside its reserve, and another " + (box ? std::string("box") : kindOrBox == 0 ? "biped" : "quadruped") +
+         " with the physics world's growth needs more)";
 }
 
 // ---- Stepping -----------------------------------------------------------------------------------

@@ -191,11 +191,11 @@ TEST(CApiFuzz, RoomIsCountedAndASpawnBeyondItIsRefusedWithTheReason) {
   const int bipeds = gl_sim_room(sim, GL_KIND_BIPED);
   gl_sim_spawn(sim, GL_KIND_BIPED, 0, 0, 0);
   EXPECT_EQ(gl_sim_room(sim, GL_KIND_BIPED), bipeds - 1);
-  // Boxes dropped on one spot: every one touches every other. The 257th is refused.
+  // Boxes dropped on one spot: every one touches every other. The 65th is refused.
   for (int i = 0; i < gaitlab::limits::kMaxBoxes; ++i) ASSERT_GE(gl_sim_spawn(sim, GL_KIND_BOX, 3, 3, 0), 0) << i;
   EXPECT_EQ(gl_sim_room(sim, GL_KIND_BOX), 0);
   EXPECT_EQ(gl_sim_spawn(sim, GL_KIND_BOX, 3, 3, 0), GL_ERR_FULL);
-  EXPECT_NE(std::string(gl_last_error()).find("256 boxes"), std::string::npos) << gl_last_error();
+  EXPECT_NE(std::string(gl_last_error()).find("64 boxes"), std::string::npos) << gl_last_error();
   const gl_throw_settings t{{0, 1, 0}, {0, 0, 1}, 0.1};
   EXPECT_EQ(gl_sim_throw_box(sim, &t), GL_ERR_FULL);
   gl_sim_destroy(sim);

@@ -21,7 +21,7 @@ export const MAX_AUTO_RESET = 3600.0;
 export const MAX_STEPS_PER_CALL = 12000;
 
 /** What a simulation holds. */
-export const MAX_BOXES = 256;
+export const MAX_BOXES = 64;
 
 /**
  * Whether `text` is JSON within the limits above, checked as native/src/gait/params_io.cpp's

@@ -91,7 +91,7 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
     const page = await browser.newPage();
     await page.goto(`${server.url}bench.html?legs=4&characters=1,911&threads=1&modes=serial&steps=8&runs=1&autorun=1`, { waitUntil: 'load' });
     await page.waitForFunction(() => window.gaitlabBench.state === 'error', null, { timeout: TIMEOUT });
-    assert.match(await page.evaluate(() => window.gaitlabBench.error), /911 quadrupeds is more than a simulation holds \(910\)/);
+    assert.match(await page.evaluate(() => window.gaitlabBench.error), /911 quadrupeds is more than a simulation holds \([1-8]\d\d\)/); // as many as the module's heap affords (README, "Limits")
     assert.equal(await page.evaluate(() => window.gaitlabBench.document?.points?.length ?? 0), 0, 'no point was measured');
     await page.close();
   });

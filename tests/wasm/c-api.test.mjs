@@ -108,7 +108,7 @@ describe('the C ABI contract in WASM', () => {
     const sim = Module._gl_sim_create(1, 1);
     try {
       assert.equal(Module._gl_sim_step(sim, -1), -1);
-      assert.equal(lastError(), 'steps: -1 is negative');
+      assert.equal(lastError(), 'steps: -1 is outside [0, 12000]');
       assert.equal(Module._gl_sim_set_goal(sim, 42, 1, 0), -3);
       assert.equal(lastError(), 'id: no character has id 42');
       assert.equal(Module._gl_sim_get_params(sim, 42), 0);

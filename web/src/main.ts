@@ -276,13 +276,20 @@ if (!window.crossOriginIsolated) {
     );
   }, navigator.serviceWorker && window.isSecureContext ? 5000 : 0);
 } else if (stage) {
-  const options = simOptionsFromQuery(location.search, {
-    wasmUrl: new URL(`${import.meta.env.BASE_URL}wasm/gaitlab.mjs`, location.href).href,
-    threads: defaultThreads(navigator.hardwareConcurrency),
-    seed: 1,
-    // A dozen bipeds and a dozen quadrupeds.
-    characters: 24,
-  });
+  const queryNotes: string[] = [];
+  const options = simOptionsFromQuery(
+    location.search,
+    {
+      wasmUrl: new URL(`${import.meta.env.BASE_URL}wasm/gaitlab.mjs`, location.href).href,
+      threads: defaultThreads(navigator.hardwareConcurrency),
+      seed: 1,
+      // A dozen bipeds and a dozen quadrupeds.
+      characters: 24,
+    },
+    queryNotes,
+  );
+  // A query parameter out of range runs with the nearest valid value, and says so.
+  for (const note of queryNotes) overlay.message(note, 'problem');
   let framed = false;
   // Gaits in and out of the page (links, files), judged by the module in the sim worker.
   const transfer = new GaitTransfer((json) => client!.normalize(json));

@@ -3,6 +3,7 @@
 #include "api/c_api.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -12,6 +13,9 @@
 
 #include "api/cli_bench.h"
 #include "api/handles.h"
+#include "api/limits.h"
+#include "body/morphology.h"
+#include "sim/capacity.h"
 #include "gait/defaults.h"
 #include "gait/heading.h"
 #include "gait/params_io.h"
@@ -48,7 +52,59 @@ bool isFinite(double v) { return std::isfinite(v); }
 bool isFinite(const double (&v)[3]) { return isFinite(v[0]) && isFinite(v[1]) && isFinite(v[2]); }
 
 std::string str(int v) { return std::to_string(v); }
-std::string str(double v) { return nlohmann::json(v).dump(); }
+// nlohmann writes NaN and infinity as null: say what they are.
+std::string str(double v) {
+  if (std::isnan(v)) return "NaN";
+  if (std::isinf(v)) return v > 0 ? "Infinity" : "-Infinity";
+  return nlohmann::json(v).dump();
+}
+std::string str(const double (&v)[3]) { return "(" + str(v[0]) + ", " + str(v[1]) + ", " + str(v[2]) + ")"; }
+
+// A number a command carries, checked where it enters (api/limits.h): finite, and |v| <= max.
+// Returns the refusal's message ("NAME: VALUE is not finite" / "... is outside [-MAX, MAX]"), or
+// an empty string.
+std::string outOfRange(const std::string& name, double v, double max) {
+  if (!isFinite(v)) return name + ": " + str(v) + " is not finite";
+  if (std::abs(v) > max) return name + ": " + str(v) + " is outside [" + str(-max) + ", " + str(max) + "]";
+  return "";
+}
+std::string outOfRange(const std::string& name, const double (&v)[3], double max) {
+  for (double x : v) {
+    if (!isFinite(x)) return name + ": " + str(v) + " is not finite";
+  }
+  for (double x : v) {
+    if (std::abs(x) > max) return name + ": " + str(v) + " has a coordinate outside [" + str(-max) + ", " + str(max) + "]";
+  }
+  return "";
+}
+
+// The WASM build's pthread pool is fixed (GL_MAX_THREADS - 1 workers, PTHREAD_POOL_SIZE): a
+// thread beyond it would abort the module (PTHREAD_POOL_SIZE_STRICT). Every simulation, search
+// and benchmark point takes its workers (threads - 1) from this count and gives them back when it
+// ends; one that would need more than are free is refused. Natively threads are the machine's.
+#ifdef __EMSCRIPTEN__
+constexpr int kPoolWorkers = GL_MAX_THREADS - 1;
+#else
+constexpr int kPoolWorkers = std::numeric_limits<int>::max();
+#endif
+std::atomic<int> g_workersInUse{0};
+bool takeWorkers(int threads) {
+  const int want = threads - 1;
+  int used = g_workersInUse.load();
+  do {
+    if (want > kPoolWorkers - used) return false;
+  } while (!g_workersInUse.compare_exchange_weak(used, used + want));
+  return true;
+}
+void giveWorkers(int threads) { g_workersInUse -= threads - 1; }
+std::string noWorkers(int threads) {
+  return "threads: " + str(threads) + " needs " + str(threads - 1) + " pool threads and only " +
+         str(kPoolWorkers - g_workersInUse.load()) + " of the module's " + str(GL_MAX_THREADS - 1) +
+         " are free (other simulations or searches use the rest)";
+}
+
+// The message of a spawn refused for want of room: what is full.
+std::string noRoom(void* s, int kind) { return "no room: " + handle(s)->simulation.fullReason(kind); }
 
 // Character types are numbered once (gait::Character, which the simulation uses too); the ABI's
 // numbers say the same, and a box, a prop rather than a character, takes the next number.
@@ -67,6 +123,23 @@ std::string noCharacter(int id) { return "id: no character has id " + str(id); }
 
 bool benchLegs(int legs) { return legs == GL_LEGS_MIXED || legs == GL_LEGS_BIPED || legs == GL_LEGS_QUADRUPED; }
 std::string notLegs(int legs) { return "legs: " + str(legs) + " is not 0 (mixed), 2 or 4"; }
+
+// The largest crowd of `legs` a new simulation holds: the render buffer's room, and in the WASM
+// build what the heap left can afford (sim/capacity.h) beside the simulation itself, so that
+// gl_bench_max_characters agrees with gl_sim_room.
+int benchMaxCharacters(int legs) {
+  using namespace gaitlab::sim;
+  const int render = maxCharacters(legs);
+  const int64_t headroom = heapHeadroom();
+  if (headroom < 0) return render;
+  const int64_t left = std::max<int64_t>(0, headroom - kSimulationBytes);
+  const int biped = static_cast<int>(gaitlab::body::makeBiped().segments.size());
+  const int quadruped = static_cast<int>(gaitlab::body::makeQuadruped().segments.size());
+  const int64_t heap = legs == GL_LEGS_BIPED ? affordable(left, kBipedBytes, biped, 0)
+                       : legs == GL_LEGS_QUADRUPED ? affordable(left, kQuadrupedBytes, quadruped, 0)
+                                                   : 2 * affordable(left, kBipedBytes + kQuadrupedBytes, biped + quadruped, 0);
+  return static_cast<int>(std::min<int64_t>(render, heap));
+}
 
 // The characters a parameter call addresses: the one with id `characterId`, or with -1 every
 // character of `kind` (whose gait::Character goes to `out`). Returns GL_OK or the refusal.
@@ -102,19 +175,41 @@ int gl_max_threads(void) { return GL_MAX_THREADS; }
 
 // ---- Simulation ----------------------------------------------------------------------------
 
-void* gl_sim_create(int threads, uint32_t seed) { return new SimHandle(clampThreads(threads), seed); }
+void* gl_sim_create(int threads, uint32_t seed) {
+  threads = clampThreads(threads);
+  const int64_t headroom = gaitlab::sim::heapHeadroom();
+  if (headroom >= 0 && headroom < gaitlab::sim::kSimulationBytes)
+    return refuse<void*>(nullptr, "memory: a simulation needs " + str(static_cast<int>(gaitlab::sim::kSimulationBytes >> 20)) +
+                                      " MiB and the module has " + str(static_cast<int>(headroom >> 20)) + " MiB left beside its reserve");
+  if (!takeWorkers(threads)) return refuse<void*>(nullptr, noWorkers(threads));
+  return new SimHandle(threads, seed);
+}
 
-void gl_sim_destroy(void* s) { delete handle(s); }
+void gl_sim_destroy(void* s) {
+  if (!s) return;
+  const int threads = sim(s)->threads();
+  delete handle(s);
+  giveWorkers(threads);
+}
+
+int gl_sim_room(void* s, int kind) {
+  if (kind == GL_KIND_BIPED || kind == GL_KIND_QUADRUPED) return sim(s)->characterRoom(static_cast<Character>(kind));
+  if (kind == GL_KIND_BOX) return sim(s)->boxRoom();
+  return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_KIND_BIPED, GL_KIND_QUADRUPED or GL_KIND_BOX");
+}
 
 int gl_sim_spawn(void* s, int kind, double x, double z, double heading) {
   if (kind < GL_KIND_BIPED || kind > GL_KIND_BOX)
     return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_KIND_BIPED, GL_KIND_QUADRUPED or GL_KIND_BOX");
-  if (!isFinite(x) || !isFinite(z) || !isFinite(heading))
-    return refuse(GL_ERR_ARGUMENT, "position and heading: (" + str(x) + ", " + str(z) + ", " + str(heading) +
-                                       ") are not all finite");
+  using namespace gaitlab::limits;
+  for (const std::string& e : {outOfRange("x", x, kMaxCoordinate), outOfRange("z", z, kMaxCoordinate),
+                               outOfRange("heading", heading, kMaxHeading)}) {
+    if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
+  }
+  if (gl_sim_room(s, kind) < 1) return refuse(GL_ERR_FULL, noRoom(s, kind));
   const int id = kind == GL_KIND_BOX ? sim(s)->spawnBox(x, z, heading)
                                      : sim(s)->spawn(static_cast<Character>(kind), x, z, heading);
-  if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
+  if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, kind));
   return id;
 }
 
@@ -134,7 +229,7 @@ int gl_sim_add_characters(void* s, int kind, int count) {
 int gl_sim_add_apart(void* s, int kind) {
   if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(GL_ERR_ARGUMENT, notACharacter(kind));
   const int id = sim(s)->addApart(static_cast<Character>(kind));
-  if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
+  if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, kind));
   return id;
 }
 
@@ -145,7 +240,8 @@ int gl_sim_demo_scene(void* s, int characters) {
 }
 
 int gl_sim_step(void* s, int steps) {
-  if (steps < 0) return refuse(GL_ERR_ARGUMENT, "steps: " + str(steps) + " is negative");
+  if (steps < 0 || steps > gaitlab::limits::kMaxStepsPerCall)
+    return refuse(GL_ERR_ARGUMENT, "steps: " + str(steps) + " is outside [0, " + str(gaitlab::limits::kMaxStepsPerCall) + "]");
   sim(s)->step(steps);
   return GL_OK;
 }
@@ -229,8 +325,10 @@ const char* gl_sim_get_params(void* s, int characterId) {
 // ---- Interaction: the demo page's commands --------------------------------------------------
 
 int gl_sim_set_goal(void* s, int id, double speed, double turn_rate) {
-  if (!isFinite(speed) || !isFinite(turn_rate))
-    return refuse(GL_ERR_ARGUMENT, "goal: speed " + str(speed) + " and turn rate " + str(turn_rate) + " are not both finite");
+  for (const std::string& e : {outOfRange("goal speed", speed, gaitlab::limits::kMaxGoalSpeed),
+                               outOfRange("goal turn rate", turn_rate, gaitlab::limits::kMaxGoalTurn)}) {
+    if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
+  }
   const gaitlab::gait::Goal goal{speed, turn_rate};
   if (id == -1) {
     sim(s)->setGoal(-1, goal);
@@ -245,21 +343,27 @@ int gl_sim_set_goal(void* s, int id, double speed, double turn_rate) {
 void gl_throw_defaults(gl_throw_settings* t) { *t = gl_throw_settings{{0, 1, 0}, {0, 0, 0}, 0.12}; }
 
 int gl_sim_throw_box(void* s, const gl_throw_settings* t) {
-  if (!isFinite(t->from) || !isFinite(t->velocity))
-    return refuse(GL_ERR_ARGUMENT, "from and velocity: not every coordinate is finite");
+  using namespace gaitlab::limits;
+  for (const std::string& e : {outOfRange("from", t->from, kMaxCoordinate), outOfRange("velocity", t->velocity, kMaxThrowSpeed)}) {
+    if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
+  }
+  if (std::hypot(t->velocity[0], t->velocity[1], t->velocity[2]) > kMaxThrowSpeed)
+    return refuse(GL_ERR_ARGUMENT, "velocity: " + str(t->velocity) + " is faster than " + str(kMaxThrowSpeed) + " m/s");
   if (!(t->half >= 0.03 && t->half <= 0.5))
     return refuse(GL_ERR_ARGUMENT, "half: " + str(t->half) + " is outside [0.03, 0.5] m");
   const int id = sim(s)->throwBox({t->from[0], t->from[1], t->from[2]},
                                   {t->velocity[0], t->velocity[1], t->velocity[2]}, t->half);
-  if (id < 0) return refuse(GL_ERR_FULL, "the render buffer has no room for another body");
+  if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, GL_KIND_BOX));
   return id;
 }
 
 void gl_drag_defaults(gl_drag_settings* d) { *d = gl_drag_settings{-1, 0, {0, 0, 0}, {0, 0, 0}}; }
 
 int gl_sim_drag(void* s, const gl_drag_settings* d) {
-  if (!isFinite(d->local) || !isFinite(d->target))
-    return refuse(GL_ERR_ARGUMENT, "local and target: not every coordinate is finite");
+  for (const std::string& e : {outOfRange("local", d->local, gaitlab::limits::kMaxDragLocal),
+                               outOfRange("target", d->target, gaitlab::limits::kMaxCoordinate)}) {
+    if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
+  }
   if (sim(s)->indexOf(d->id) < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(d->id));
   if (!sim(s)->drag(d->id, d->segment, {d->local[0], d->local[1], d->local[2]},
                     {d->target[0], d->target[1], d->target[2]}))
@@ -278,8 +382,8 @@ int gl_sim_remove_character(void* s, int id) {
 }
 
 int gl_sim_set_auto_reset(void* s, double seconds) {
-  if (!(seconds >= 0) || !isFinite(seconds))
-    return refuse(GL_ERR_ARGUMENT, "seconds: " + str(seconds) + " is not a time >= 0");
+  if (!(seconds >= 0) || !(seconds <= gaitlab::limits::kMaxAutoReset))
+    return refuse(GL_ERR_ARGUMENT, "seconds: " + str(seconds) + " is outside [0, " + str(gaitlab::limits::kMaxAutoReset) + "]");
   sim(s)->setAutoReset(seconds);
   return GL_OK;
 }
@@ -389,11 +493,14 @@ void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, cons
       return refuse<void*>(nullptr, "start: " + error->describe());
   }
   if (objectiveJson) {
+    if (const auto error = gait::checkJsonText(objectiveJson))
+      return refuse<void*>(nullptr, "objective settings: " + error->describe());
     const nlohmann::json j = nlohmann::json::parse(objectiveJson, nullptr, false);
     const std::string error = j.is_discarded() ? "objective settings: expected a JSON object"
                                                : optimize::readObjectiveSettings(j, &o.objective);
     if (!error.empty()) return refuse<void*>(nullptr, error);
   }
+  if (!takeWorkers(o.threads)) return refuse<void*>(nullptr, noWorkers(o.threads));
   return new OptHandle{optimize::Optimizer::create(o, start.params), c, {}};
 }
 
@@ -402,7 +509,12 @@ const char* gl_opt_settings_json(void) {
   return table.c_str();
 }
 
-void gl_opt_destroy(void* h) { delete opt(h); }
+void gl_opt_destroy(void* h) {
+  if (!h) return;
+  const int threads = opt(h)->optimizer->options().threads;
+  delete opt(h);
+  giveWorkers(threads);
+}
 
 double gl_opt_step(void* h) { return opt(h)->optimizer->step().bestObjective; }
 
@@ -435,12 +547,15 @@ const char* gl_bench_machine(void) {
 
 int gl_bench_max_characters(int legs) {
   if (!benchLegs(legs)) return refuse(GL_ERR_ARGUMENT, notLegs(legs));
-  return gaitlab::sim::maxCharacters(legs);
+  return benchMaxCharacters(legs);
 }
 
 int gl_bench_warm_up(int legs, int threads) {
   if (!benchLegs(legs)) return refuse(GL_ERR_ARGUMENT, notLegs(legs));
-  gaitlab::sim::warmUp({legs}, clampThreads(threads));
+  threads = clampThreads(threads);
+  if (!takeWorkers(threads)) return refuse(GL_ERR_ARGUMENT, noWorkers(threads));
+  gaitlab::sim::warmUp({legs}, threads);
+  giveWorkers(threads);
   return GL_OK;
 }
 
@@ -452,15 +567,21 @@ void gl_bench_defaults(gl_bench_settings* b) {
 
 const char* gl_bench_point(const gl_bench_settings* b) {
   thread_local std::string point;
-  using gaitlab::sim::maxCharacters;
+  const auto maxCharacters = benchMaxCharacters;
+  using namespace gaitlab::limits;
   if (!benchLegs(b->legs)) return refuse<const char*>(nullptr, notLegs(b->legs));
   if (b->characters < 1 || b->characters > maxCharacters(b->legs))
     return refuse<const char*>(nullptr, "characters: " + str(b->characters) + " is outside [1, " +
                                             str(maxCharacters(b->legs)) + "] (the most a simulation holds)");
   if (b->mode < GL_MODE_SERIAL || b->mode > GL_MODE_FULL)
     return refuse<const char*>(nullptr, "mode: " + str(b->mode) + " is not GL_MODE_SERIAL, GL_MODE_CONTROLLER or GL_MODE_FULL");
-  if (b->steps < 1) return refuse<const char*>(nullptr, "steps: " + str(b->steps) + " is not >= 1");
-  if (b->runs < 1) return refuse<const char*>(nullptr, "runs: " + str(b->runs) + " is not >= 1");
+  if (b->steps < 1 || b->steps > kMaxBenchSteps)
+    return refuse<const char*>(nullptr, "steps: " + str(b->steps) + " is outside [1, " + str(kMaxBenchSteps) + "]");
+  if (b->runs < 1 || b->runs > kMaxBenchRuns)
+    return refuse<const char*>(nullptr, "runs: " + str(b->runs) + " is outside [1, " + str(kMaxBenchRuns) + "]");
+  if (static_cast<long>(b->steps) * b->runs > kMaxBenchSamples)
+    return refuse<const char*>(nullptr, "steps × runs: " + str(b->steps) + " × " + str(b->runs) + " is more than " +
+                                            std::to_string(kMaxBenchSamples) + " timed steps");
   if (b->shards < 1 || b->shards > 64) return refuse<const char*>(nullptr, "shards: " + str(b->shards) + " is outside [1, 64]");
   if (!(b->spacing >= 2.5) || !isFinite(b->spacing))
     return refuse<const char*>(nullptr, "spacing: " + str(b->spacing) + " is not a distance >= 2.5 m");
@@ -475,7 +596,9 @@ const char* gl_bench_point(const gl_bench_settings* b) {
   s.spacing = b->spacing;
   s.seed = b->seed;
   s.frames = b->frames != 0;
+  if (!takeWorkers(s.threads)) return refuse<const char*>(nullptr, noWorkers(s.threads));
   point = gaitlab::api::benchJsonPoint(gaitlab::sim::runPoint(s)).dump();
+  giveWorkers(s.threads);
   return point.c_str();
 }
 

@@ -14,7 +14,9 @@
 //              GL_KIND_QUADRUPED", "id: no character has id 12", "period: 99.0 is outside
 //              [0.2, 2]"). It is per thread and only meaningful right after a refusal:
 //              successful calls leave it as it was.
-//   Checked.   Ids, kinds, counts, enum values, numbers and JSON text are checked. Thread counts
+//   Checked.   Ids, kinds, counts, enum values, numbers and JSON text are checked: numbers for
+//              finiteness and against api/limits.h's ranges, JSON text against its limits on
+//              bytes, nesting depth and string and array lengths. Thread counts
 //              are not refused but clamped to [1, GL_MAX_THREADS] (gl_sim_threads tells the
 //              count in use). Handles and output arrays are not checked: a handle must come from
 //              its create function and not be destroyed yet, an output array must be as large
@@ -81,7 +83,9 @@ GL_EXPORT int gl_max_threads(void);
 
 // A new simulation: flat ground (gl_sim_set_terrain changes it), nothing on it. `threads` is the
 // size of the thread pool used for per-character work (clamped). `seed` drives every random
-// choice of the scene. Never fails.
+// choice of the scene. NULL when the WASM build cannot afford it: its heap is nearly full, or
+// its fixed pthread pool (GL_MAX_THREADS - 1 workers, shared by every simulation, search and
+// benchmark point of the module) has fewer than threads - 1 free.
 GL_EXPORT void* gl_sim_create(int threads, uint32_t seed);
 GL_EXPORT void gl_sim_destroy(void* sim);  // NULL is allowed
 
@@ -91,8 +95,16 @@ enum { GL_KIND_BIPED = 0, GL_KIND_QUADRUPED = 1, GL_KIND_BOX = 2 };
 
 // Spawns one thing standing on the ground at (x, z), facing `heading` radians (about +y,
 // 0 = +z). Returns its id (>= 0); GL_ERR_ARGUMENT for an unknown kind or a position or heading
-// that is not finite, GL_ERR_FULL when the render buffer has no room.
+// that is not finite or beyond api/limits.h's (|x|, |z| <= 1000 m, |heading| <= 1000 rad),
+// GL_ERR_FULL when gl_sim_room(sim, kind) is 0 (the message says what is full).
 GL_EXPORT int gl_sim_spawn(void* sim, int kind, double x, double z, double heading);
+
+// How many more things of `kind` (GL_KIND_*) the simulation can take now: the least of the
+// render buffer's room, the free ids, for boxes the most a scene holds (64, boxes of every
+// origin counted), and in the WASM build what its fixed heap can still afford at the measured
+// cost of each (sim/capacity.h). Every spawn refuses with GL_ERR_FULL, before allocating, when
+// this is 0. GL_ERR_ARGUMENT for another kind.
+GL_EXPORT int gl_sim_room(void* sim, int kind);
 
 // The speed a character of `kind` is tuned and benchmarked for, m/s (sim::Simulation::
 // cruiseSpeed): the demo's start goal. NaN for a kind that is not a character.
@@ -118,9 +130,12 @@ GL_EXPORT int gl_sim_add_apart(void* sim, int kind);
 // for a negative count.
 GL_EXPORT int gl_sim_demo_scene(void* sim, int characters);
 
-// Advances the simulation by `steps` (>= 0) fixed steps of 1/120 s, then publishes render
-// transforms (0 steps publishes the scene as it is). GL_OK, or GL_ERR_ARGUMENT for a negative
-// count.
+// Advances the simulation by `steps` (0 to 12000, 100 s) fixed steps of 1/120 s, then publishes
+// render transforms (0 steps publishes the scene as it is). GL_OK, or GL_ERR_ARGUMENT for a count
+// outside that range. A character whose state stops being finite in a step (a physics blow-up)
+// counts as fallen (GL_INFO_FALLEN), its bodies leave the simulation where it last stood, and
+// every reset (gl_sim_reset_character, the automatic reset, gl_sim_set_terrain) rebuilds it
+// standing there.
 GL_EXPORT int gl_sim_step(void* sim, int steps);
 
 // Never fail.
@@ -182,7 +197,7 @@ GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
 
 // Steering goal of character `id`, or of every character with id = -1: forward speed (m/s) and
 // turn rate (rad/s, about +y, positive = left). GL_OK; GL_ERR_NO_CHARACTER, or GL_ERR_ARGUMENT
-// for a goal that is not finite.
+// for a speed or a turn rate that is not finite or is beyond ±5 m/s or ±3 rad/s.
 GL_EXPORT int gl_sim_set_goal(void* sim, int id, double speed, double turn_rate);
 
 // A box thrown into the scene: from `from` (m) with `velocity` (m/s), half size `half` (m).
@@ -194,8 +209,10 @@ typedef struct gl_throw_settings {
 GL_EXPORT void gl_throw_defaults(gl_throw_settings* settings);
 
 // Throws a box. It collides with characters, props and the ground; the oldest thrown box goes
-// once there are 32. Returns its id (>= 0); GL_ERR_ARGUMENT for a half size out of range or a
-// value that is not finite, GL_ERR_FULL when the render buffer has no room.
+// once there are 32, or when the scene holds the most boxes it takes. Returns its id (>= 0);
+// GL_ERR_ARGUMENT for a half size out of range, a value that is not finite, `from` beyond
+// 1000 m or a velocity over 100 m/s; GL_ERR_FULL when gl_sim_room(sim, GL_KIND_BOX) is 0 and no
+// thrown box can make way.
 GL_EXPORT int gl_sim_throw_box(void* sim, const gl_throw_settings* settings);
 
 // A drag: point `local` of segment `segment` of character `id` (segment body frame, metres; the
@@ -211,7 +228,7 @@ GL_EXPORT void gl_drag_defaults(gl_drag_settings* settings);
 
 // Starts a drag, applied every step until gl_sim_end_drag; calling it again moves the target.
 // GL_OK; GL_ERR_NO_CHARACTER, or GL_ERR_ARGUMENT for a segment the character does not have or a
-// point that is not finite.
+// point that is not finite (or `local` beyond 10 m, `target` beyond 1000 m).
 GL_EXPORT int gl_sim_drag(void* sim, const gl_drag_settings* settings);
 GL_EXPORT void gl_sim_end_drag(void* sim);
 
@@ -221,8 +238,8 @@ GL_EXPORT int gl_sim_reset_character(void* sim, int id);
 GL_EXPORT int gl_sim_remove_character(void* sim, int id);
 
 // Characters fallen for `seconds` (leg frame below half its standing height or tilted over 60°)
-// are reset automatically; 0 turns it off. GL_OK, or GL_ERR_ARGUMENT for a negative or
-// non-finite time.
+// are reset automatically; 0 turns it off. GL_OK, or GL_ERR_ARGUMENT for a time outside
+// [0, 3600].
 GL_EXPORT int gl_sim_set_auto_reset(void* sim, double seconds);
 
 // Arena wandering (native/src/sim/wander.h): character `id`, or every character now in the scene
@@ -309,7 +326,8 @@ GL_EXPORT void gl_opt_defaults(gl_opt_settings* settings);
 // A new search. `start_json` a gait file to start from, or NULL for the preset; `objective_json`
 // NULL or an object of objective settings ({"seconds":4,"speeds":[0.5,1],"wr":2,
 // "grounds":["flat","slope@3.14159"],...}, read by optimize::readObjectiveSettings,
-// native/src/optimize/settings.h). NULL on refusal.
+// native/src/optimize/settings.h). NULL on refusal, including a `threads` the WASM build's
+// pthread pool cannot supply now (gl_sim_create).
 GL_EXPORT void* gl_opt_create(const gl_opt_settings* settings, const char* start_json,
                               const char* objective_json);
 GL_EXPORT void gl_opt_destroy(void* opt);  // NULL is allowed
@@ -343,7 +361,8 @@ enum { GL_MODE_SERIAL = 0, GL_MODE_CONTROLLER = 1, GL_MODE_FULL = 2 };
 // mode on `threads` threads (clamped). GL_OK, or GL_ERR_ARGUMENT for unknown legs.
 GL_EXPORT int gl_bench_warm_up(int legs, int threads);
 
-// The largest crowd of `legs` (GL_LEGS_*) one simulation holds, or GL_ERR_ARGUMENT.
+// The largest crowd of `legs` (GL_LEGS_*) a new simulation holds, as gl_sim_room counts (the
+// render buffer, and in the WASM build the heap left now), or GL_ERR_ARGUMENT.
 GL_EXPORT int gl_bench_max_characters(int legs);
 
 // One point of the experiment (sim::PointSpec; the defaults are its defaults).
@@ -352,8 +371,8 @@ typedef struct gl_bench_settings {
   int32_t characters;  // [1, gl_bench_max_characters(legs)]; default 1
   int32_t threads;     // clamped; default 1
   int32_t mode;        // GL_MODE_*; default GL_MODE_SERIAL
-  int32_t steps;       // fixed steps per run, >= 1; default 800 (the thesis's)
-  int32_t runs;        // >= 1; default 20 (the thesis's)
+  int32_t steps;       // fixed steps per run, [1, 100000]; default 800 (the thesis's)
+  int32_t runs;        // [1, 1000], steps × runs <= 2,000,000; default 20 (the thesis's)
   int32_t shards;      // physics shards, [1, 64]; default 12
   uint32_t seed;       // default 1
   double spacing;      // metres between grid neighbours, >= 2.5; default 4

@@ -17,6 +17,11 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cerrno>
+
 #include "api/c_api.h"
 #include "api/cli_bench.h"
 #include "api/options.h"
@@ -33,26 +38,19 @@ namespace {
 
 using nlohmann::json;
 
-const char* kUsage =
-    "usage: gaitlab [--version] [--help] <command> [options]\n"
+const char* kWalkUsage =
+    "usage: gaitlab walk [options]\n"
     "\n"
-    "Physics-driven procedural locomotion for bipeds and quadrupeds (Bullet Physics).\n"
+    "One character walks; prints what it achieved (speed, drift, duty factors...).\n"
     "\n"
-    "commands:\n"
-    "  walk       one character walks; prints what it achieved (speed, drift, duty factors...)\n"
-    "  bench      the thesis's performance experiment on crowds (gaitlab bench --help)\n"
-    "  schema     prints the gait parameter schema (names, groups, bounds, defaults, units)\n"
-    "  optimize   searches gait parameters (thesis §3.3) and writes the best as a gait file\n"
-    "\n"
-    "walk options:\n"
     "  --character biped|quadruped   (default biped, or the --params file's character)\n"
     "  --params FILE                 gait file (public/presets/*.json format); default: preset\n"
-    "  --speed M_S                   goal speed, m/s (default 1.0)\n"
-    "  --turn RAD_S                  goal turn rate, rad/s (default 0)\n"
+    "  --speed M_S                   goal speed, m/s, -5 to 5 (default 1.0)\n"
+    "  --turn RAD_S                  goal turn rate, rad/s, -3 to 3 (default 0)\n"
     "  --heading RAD                 heading it starts facing, about +y (default 0: +z)\n"
     "  --start-push-forward N_S      impulse at the leg frame at t = 0, forward (default 0)\n"
     "  --start-push-left N_S         the same, to the left (default 0)\n"
-    "  --seconds S                   simulated time (default 20)\n"
+    "  --seconds S                   simulated time, 0.01 to 3600 (default 20)\n"
     "  --terrain flat|slope|bumps    ground (default flat): slope = ridges and valleys of ±5°\n"
     "                                across the walking direction, bumps = smooth random bumps\n"
     "                                of 2-3 cm every 0.5 m (drawn from --seed)\n"
@@ -62,19 +60,25 @@ const char* kUsage =
     "  --speed-schedule T:V,...      goal speed V m/s at time T s, linear between, held after the\n"
     "                                last (replaces --speed; reports speed tracking)\n"
     "  --drift-window S              position drift over the last S seconds (default: second half)\n"
-    "  --seed N                      (default 1)\n"
+    "  --seed N                      0 to 4294967295 (default 1)\n"
     "  --trace                       include the leg frame's path every 0.1 s\n"
-    "  --json                        print one JSON document\n"
+    "  --json                        print one JSON document\n";
+
+const char* kOptimizeUsage =
+    "usage: gaitlab optimize --out FILE [options]\n"
     "\n"
-    "optimize options:\n"
+    "Searches gait parameters (thesis §3.3) and writes the best as a gait file.\n"
+    "\n"
     "  --character biped|quadruped   (default biped, or the --params file's character)\n"
     "  --params FILE                 start from this gait file (default: the preset)\n"
     "  --method greedy|cmaes         greedy stochastic search of §3.3 (default) or CMA-ES\n"
-    "  --generations N               (default 20)\n"
-    "  --candidates K                evaluations per generation (default 10)\n"
-    "  --seed S                      (default 1): the same seed gives the same search\n"
-    "  --threads T                   evaluations in parallel (default 1)\n"
-    "  --out FILE                    where the best gait is written (required)\n"
+    "  --generations N               1 to 1000000 (default 20)\n"
+    "  --candidates K                evaluations per generation, 2 to 1000 (default 10)\n"
+    "  --seed S                      0 to 4294967295 (default 1): the same seed, the same search\n"
+    "  --threads T                   evaluations in parallel, 1 to 64 (default 1)\n"
+    "  --out FILE                    where the best gait is written (required); checked before\n"
+    "                                the search starts, written to a temporary file beside it\n"
+    "                                and renamed, so a previous FILE is replaced whole or not at all\n"
     "  --seconds S                   length of each evaluation episode (default 800 steps)\n"
     "  --speeds A,B,...              goal speeds each candidate walks at, m/s (default 1.0)\n"
     "  --grounds G,...               grounds each candidate walks on (default flat): flat, slope\n"
@@ -83,15 +87,38 @@ const char* kUsage =
     "  --objective NAME=V,...        objective settings: wd wv wa wr fallPenalty warmup starts\n"
     "                                startImpulse turnRate pushImpulse pushEvery\n"
     "  --json                        print a JSON summary on stdout (progress goes to stderr)\n"
-    "  Ctrl-C stops after the current generation and still writes the best so far.\n"
+    "  Ctrl-C stops after the current generation and still writes the best so far.\n";
+
+const char* kSchemaUsage =
+    "usage: gaitlab schema [options]\n"
     "\n"
-    "schema options:\n"
+    "Prints the gait parameter schema (names, groups, bounds, defaults, units).\n"
+    "\n"
     "  --character biped|quadruped   only this character (default both)\n"
-    "  --json                        print one JSON document\n"
+    "  --json                        print one JSON document\n";
+
+const char* kUsage =
+    "usage: gaitlab [--version] [--help] <command> [options]\n"
+    "\n"
+    "Physics-driven procedural locomotion for bipeds and quadrupeds (Bullet Physics).\n"
+    "\n"
+    "commands (gaitlab COMMAND --help for each one's options):\n"
+    "  walk       one character walks; prints what it achieved (speed, drift, duty factors...)\n"
+    "  bench      the thesis's performance experiment on crowds\n"
+    "  schema     prints the gait parameter schema (names, groups, bounds, defaults, units)\n"
+    "  optimize   searches gait parameters (thesis §3.3) and writes the best as a gait file\n"
+    "\n"
+    "Gait files (--params) are read up to 256 KiB, nested at most 16 deep (README, \"Limits\").\n"
     "\n"
     "options:\n"
     "  --version    print the version and exit\n"
     "  --help       print this help and exit\n";
+
+// --help for a subcommand: its usage on stdout, exit status 0.
+int printHelp(const char* usage) {
+  std::fputs(usage, stdout);
+  return 0;
+}
 
 int usageError(const std::string& message) { return api::usageError("", message); }
 
@@ -121,10 +148,11 @@ int walk(int argc, char** argv) {
              "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
              "--push-direction", "--speed-schedule", "--drift-window"},
             {"--json", "--trace"});
-  if (!o.error.empty()) return usageError(o.error);
+  if (o.help) return printHelp(kWalkUsage);
+  if (!o.error.empty()) return api::usageError("walk", o.error);
   sim::WalkOptions w;
   std::optional<gait::Character> chosen;
-  if (!characterOption(o, &chosen)) return usageError(o.error);
+  if (!characterOption(o, &chosen)) return api::usageError("walk", o.error);
   gait::GaitFile file;
   if (o.values.count("--params")) {
     if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
@@ -136,8 +164,8 @@ int walk(int argc, char** argv) {
   w.character = c;
   const std::string terrain = o.values.count("--terrain") ? o.values["--terrain"] : "flat";
   if (!physics::parseTerrain(terrain, &w.terrain))
-    return usageError("--terrain: '" + terrain + "' is not flat, slope or bumps");
-  double seed = 1;
+    return api::usageError("walk", "--terrain: '" + terrain + "' is not flat, slope or bumps");
+  long long seed = 1;
   if (!o.number("--speed", -5, 5, 1.0, &w.speed) || !o.number("--turn", -3, 3, 0.0, &w.turnRate) ||
       !o.number("--heading", -7, 7, 0.0, &w.heading) ||
       !o.number("--start-push-forward", -1000, 1000, 0.0, &w.startImpulseForward) ||
@@ -145,15 +173,15 @@ int walk(int argc, char** argv) {
       !o.number("--seconds", 0.01, 3600, 20.0, &w.seconds) ||
       !o.number("--push-impulse", 0, 10000, 0.0, &w.pushImpulse) ||
       !o.number("--push-every", 0.5, 3600, 4.0, &w.pushEvery) ||
-      !o.number("--seed", 0, 4294967295.0, 1, &seed) ||
+      !o.integer("--seed", 0, kMaxSeed, 1, &seed) ||
       !o.number("--drift-window", 0, 3600, 0.0, &w.driftWindow))
-    return usageError(o.error);
+    return api::usageError("walk", o.error);
   w.seed = static_cast<uint32_t>(seed);
   const std::string direction = o.values.count("--push-direction") ? o.values["--push-direction"] : "lateral";
   if (direction == "lateral") w.pushDirection = sim::PushDirection::Lateral;
   else if (direction == "forward") w.pushDirection = sim::PushDirection::Forward;
   else if (direction == "backward") w.pushDirection = sim::PushDirection::Backward;
-  else return usageError("--push-direction: '" + direction + "' is not lateral, forward or backward");
+  else return api::usageError("walk", "--push-direction: '" + direction + "' is not lateral, forward or backward");
   if (o.values.count("--speed-schedule")) {
     // T:V pairs separated by commas, times increasing.
     std::stringstream list(o.values["--speed-schedule"]);
@@ -164,10 +192,10 @@ int walk(int argc, char** argv) {
       const double v = *end == ':' ? std::strtod(end + 1, &end) : NAN;
       if (*end != '\0' || !std::isfinite(t) || !std::isfinite(v) || std::abs(v) > 5 ||
           (!w.speedSchedule.empty() && t <= w.speedSchedule.back().first))
-        return usageError("--speed-schedule: '" + item + "' is not T:V with T increasing and |V| <= 5");
+        return api::usageError("walk", "--speed-schedule: '" + item + "' is not T:V with T increasing and |V| <= 5");
       w.speedSchedule.emplace_back(t, v);
     }
-    if (w.speedSchedule.empty()) return usageError("--speed-schedule: no T:V pairs");
+    if (w.speedSchedule.empty()) return api::usageError("walk", "--speed-schedule: no T:V pairs");
   }
   w.trace = o.flags.count("--trace") > 0;
 
@@ -211,6 +239,63 @@ int walk(int argc, char** argv) {
   return 0;
 }
 
+// A file written whole or not at all: the text goes to a temporary file in the same directory,
+// which is renamed over the path only once it is complete and flushed (rename(2) within one
+// file system is atomic). The temporary file is made by the constructor, so that a path that
+// cannot be written is known before the work whose result it is to hold; a failure at any point
+// removes it and leaves whatever was at the path before untouched.
+struct OutputFile {
+  std::string path, temporary, error;
+
+  explicit OutputFile(const std::string& target) : path(target) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+      error = "is a directory";
+      return;
+    }
+    const size_t slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    if (name.empty()) {
+      error = "names a directory, not a file";
+      return;
+    }
+    temporary = dir + "." + name + ".tmp-" + std::to_string(::getpid());
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) {
+      error = std::string("cannot be written (") + std::strerror(errno) + ")";
+      temporary.clear();
+      return;
+    }
+    ::close(fd);
+  }
+  ~OutputFile() {
+    if (!temporary.empty()) ::unlink(temporary.c_str());
+  }
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  // Writes `text` and renames it over the path; false (and `error`) if any step fails.
+  bool commit(const std::string& text) {
+    std::FILE* f = std::fopen(temporary.c_str(), "wb");
+    if (!f) return fail("cannot be written");
+    bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+    const int writeErrno = errno;
+    if (std::fclose(f) != 0) written = false;
+    else errno = writeErrno;
+    if (!written) return fail("could not be written whole");
+    if (::rename(temporary.c_str(), path.c_str()) != 0) return fail("could not be put in place");
+    temporary.clear();
+    return true;
+  }
+
+ private:
+  bool fail(const std::string& what) {
+    error = what + " (" + std::strerror(errno) + ")";
+    return false;
+  }
+};
+
 volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void onInterrupt(int) { g_interrupted = 1; }
 
@@ -233,10 +318,11 @@ int optimizeCommand(int argc, char** argv) {
             {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
              "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective"},
             {"--json"});
-  if (!o.error.empty()) return usageError(o.error);
+  if (o.help) return printHelp(kOptimizeUsage);
+  if (!o.error.empty()) return api::usageError("optimize", o.error);
   std::optional<gait::Character> chosen;
-  if (!characterOption(o, &chosen)) return usageError(o.error);
-  if (!o.values.count("--out")) return usageError("--out FILE is required");
+  if (!characterOption(o, &chosen)) return api::usageError("optimize", o.error);
+  if (!o.values.count("--out")) return api::usageError("optimize", "--out FILE is required");
   const std::string outPath = o.values["--out"];
 
   gait::GaitFile start;
@@ -252,14 +338,14 @@ int optimizeCommand(int argc, char** argv) {
 
   const std::string method = o.values.count("--method") ? o.values["--method"] : "greedy";
   if (!optimize::parseMethod(method, &search.method))
-    return usageError("--method: '" + method + "' is not greedy or cmaes");
-  double generations = 20, candidates = 10, seed = 1, threads = 1;
-  if (!o.number("--generations", 1, 1e6, 20, &generations) ||
-      !o.number("--candidates", optimize::kMinCandidates, optimize::kMaxCandidates, 10, &candidates) ||
-      !o.number("--seed", 0, 4294967295.0, 1, &seed) ||
-      !o.number("--threads", 1, 64, 1, &threads) ||
+    return api::usageError("optimize", "--method: '" + method + "' is not greedy or cmaes");
+  long long generations = 20, candidates = 10, seed = 1, threads = 1;
+  if (!o.integer("--generations", 1, 1000000, 20, &generations) ||
+      !o.integer("--candidates", optimize::kMinCandidates, optimize::kMaxCandidates, 10, &candidates) ||
+      !o.integer("--seed", 0, kMaxSeed, 1, &seed) ||
+      !o.integer("--threads", 1, 64, 1, &threads) ||
       !o.number("--seconds", 0.5, 120, search.objective.seconds, &search.objective.seconds))
-    return usageError(o.error);
+    return api::usageError("optimize", o.error);
   search.candidates = static_cast<int>(candidates);
   search.seed = static_cast<uint64_t>(seed);
   search.threads = static_cast<int>(threads);
@@ -272,10 +358,19 @@ int optimizeCommand(int argc, char** argv) {
   };
   const std::string settingsError =
       optimize::readObjectiveOptions(given("--speeds"), given("--grounds"), given("--objective"), &search.objective);
-  if (!settingsError.empty()) return usageError(settingsError);
+  if (!settingsError.empty()) return api::usageError("optimize", settingsError);
 
   std::string command = "gaitlab";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+
+  // The output is checked before the search, not after it: its temporary file is made now, beside
+  // it, so that a directory that does not exist or cannot be written, or a name the system
+  // refuses, is said at once. The result goes there and is renamed over --out at the end.
+  OutputFile output(outPath);
+  if (!output.error.empty()) {
+    std::fprintf(stderr, "gaitlab optimize: %s: %s; nothing was searched\n", outPath.c_str(), output.error.c_str());
+    return 1;
+  }
 
   g_interrupted = 0;
   const auto previous = std::signal(SIGINT, onInterrupt);
@@ -294,7 +389,6 @@ int optimizeCommand(int argc, char** argv) {
     std::fprintf(stderr, "gaitlab optimize: generation %d/%d  best %.6g%s  (%.2f s, about %.0f s left)\n",
                  gen.index, total, gen.bestObjective, gen.improved ? " *" : "", gen.seconds, left);
   }
-  std::signal(SIGINT, previous);
   const bool interrupted = g_interrupted != 0;
   if (interrupted) std::fprintf(stderr, "gaitlab optimize: interrupted; writing the best so far\n");
 
@@ -312,13 +406,16 @@ int optimizeCommand(int argc, char** argv) {
                {"evaluations", optimizer->evaluations()},
                {"interrupted", interrupted},
                {"date", utcNow()}};
-  {
-    std::ofstream out(outPath, std::ios::binary);
-    out << gait::gaitFileJson(search.character, optimizer->best(), meta);
-    if (!out) {
-      std::fprintf(stderr, "gaitlab: %s: cannot be written\n", outPath.c_str());
-      return 1;
-    }
+  // Ctrl-C stays caught until the file is in place: a second one while it is written changes
+  // nothing (the write is short), rather than leaving the temporary file behind.
+  const bool committed = output.commit(gait::gaitFileJson(search.character, optimizer->best(), meta));
+  std::signal(SIGINT, previous);
+  if (!committed) {
+    std::fprintf(stderr,
+                 "gaitlab optimize: %s: %s; any previous file there is left as it was (best objective "
+                 "%.6g, not saved)\n",
+                 outPath.c_str(), output.error.c_str(), optimizer->bestObjective());
+    return 1;
   }
   json summary = {{"character", gait::characterName(search.character)},
                   {"method", optimize::methodName(search.method)},
@@ -336,14 +433,17 @@ int optimizeCommand(int argc, char** argv) {
                   {"interrupted", interrupted},
                   {"history", history},
                   {"out", outPath}};
-  std::printf("%s\n", o.flags.count("--json") ? summary.dump().c_str() : summary.dump(2).c_str());
+  // Strings from the command line may not be UTF-8: written as U+FFFD rather than aborting.
+  const auto replace = json::error_handler_t::replace;
+  std::printf("%s\n", summary.dump(o.flags.count("--json") ? -1 : 2, ' ', false, replace).c_str());
   return 0;
 }
 
 int schema(int argc, char** argv) {
   Options o(argc, argv, 2, {"--character"}, {"--json"});
+  if (o.help) return printHelp(kSchemaUsage);
   std::optional<gait::Character> only;
-  if (!o.error.empty() || !characterOption(o, &only)) return usageError(o.error);
+  if (!o.error.empty() || !characterOption(o, &only)) return api::usageError("schema", o.error);
   const std::string text = gait::schemaJson(only);
   if (o.flags.count("--json")) {
     std::printf("%s\n", text.c_str());

@@ -39,7 +39,7 @@ const char* kBenchUsage =
     "  --runs N                      runs per point (default 20, as the thesis)\n"
     "  --shards N                    physics shards: independent Bullet worlds (default 12)\n"
     "  --spacing M                   metres between grid neighbours (default 4)\n"
-    "  --seed N                      (default 1)\n"
+    "  --seed N                      0 to 4294967295 (default 1)\n"
     "  --frames                      include per-frame mean/sd (thesis Figures 5.1, 5.2)\n"
     "  --json                        print one JSON document (bench/schema.json)\n"
     "  --csv                         print one CSV row per point\n"
@@ -243,12 +243,12 @@ int runBenchCli(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--legs", "--characters", "--threads", "--mode", "--steps", "--runs", "--shards",
              "--spacing", "--seed"},
-            {"--help", "-h", "--json", "--csv", "--frames"});
-  if (!o.error.empty()) return benchError(o.error);
-  if (o.flags.count("--help") || o.flags.count("-h")) {
+            {"--json", "--csv", "--frames"});
+  if (o.help) {
     std::fputs(kBenchUsage, stdout);
     return 0;
   }
+  if (!o.error.empty()) return benchError(o.error);
   asJson = o.flags.count("--json") > 0;
   asCsv = o.flags.count("--csv") > 0;
   base.frames = o.flags.count("--frames") > 0;
@@ -259,11 +259,11 @@ int runBenchCli(int argc, char** argv) {
   const std::string legsText = text("--legs", "2"), charactersText = text("--characters", "1-100:11"),
                     threadsText = text("--threads", "1,2"),
                     modesText = text("--mode", "serial,controller,full");
-  long steps, runs, shards, seed;
+  long long steps, runs, shards, seed;
   if (!o.integer("--steps", 1, 100000, base.steps, &steps) ||
       !o.integer("--runs", 1, 1000, base.runs, &runs) ||
       !o.integer("--shards", 1, 64, base.shards, &shards) ||
-      !o.integer("--seed", 0, 2147483647, base.seed, &seed) ||
+      !o.integer("--seed", 0, kMaxSeed, base.seed, &seed) ||
       !o.number("--spacing", 2.5, 100, base.spacing, &base.spacing))
     return benchError(o.error);
   base.steps = static_cast<int>(steps);
@@ -293,8 +293,9 @@ int runBenchCli(int argc, char** argv) {
   }
   if (!parseList(charactersText, 1, 2000, &characters, &error)) return benchError("--characters: " + error);
   for (int l : legs) {
-    // One simulation's render buffer bounds its bodies (Simulation::kRenderCapacity).
-    const int most = sim::maxCharacters(l), largest = *std::max_element(characters.begin(), characters.end());
+    // One simulation's render buffer bounds its bodies (Simulation::kRenderCapacity), and in
+    // the WASM build its fixed heap (gl_bench_max_characters, as gl_sim_room counts).
+    const int most = gl_bench_max_characters(l), largest = *std::max_element(characters.begin(), characters.end());
     if (largest > most)
       return benchError("--characters: " + std::to_string(largest) + " " + (l == sim::kMixed ? std::string("mixed characters") : l == 2 ? "bipeds" : "quadrupeds") +
                         " is more than a simulation holds (" + std::to_string(most) + ")");

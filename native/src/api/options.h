@@ -1,5 +1,8 @@
 // Command-line options of the `gaitlab` subcommands: "--name value" and "--flag", with numbers
-// checked to be finite and within bounds, and errors that name the option.
+// checked to be finite and within bounds, and errors that name the option. Every subcommand
+// parses its command line here, so they all behave alike: `--help` (or -h) anywhere prints the
+// subcommand's help, an integer option takes only whole numbers, and a seed is any 32-bit
+// unsigned integer (kMaxSeed).
 #pragma once
 #include <cmath>
 #include <cstdio>
@@ -19,27 +22,36 @@ inline int usageError(const std::string& command, const std::string& message) {
   return 2;
 }
 
+// Seeds: every subcommand takes [0, kMaxSeed] (the simulation's seed is a uint32_t).
+constexpr long long kMaxSeed = 4294967295LL;
+
 // "--name value" and "--flag" options; refuses anything not in `valued` or `flags`.
 struct Options {
   std::map<std::string, std::string> values;
   std::set<std::string> flags;
   std::string error;
+  bool help = false;  // --help or -h was given: print the subcommand's help, nothing else
 
   Options(int argc, char** argv, int first, const std::set<std::string>& valued,
           const std::set<std::string>& flagNames) {
     for (int i = first; i < argc; ++i) {
       const std::string a = argv[i];
+      if (a == "--help" || a == "-h") {
+        help = true;
+        error.clear();
+        return;
+      }
+      if (!error.empty()) continue;  // an error stands, unless --help follows
       if (flagNames.count(a)) {
         flags.insert(a);
       } else if (valued.count(a)) {
         if (i + 1 >= argc) {
           error = "option " + a + " needs a value";
-          return;
+          continue;
         }
         values[a] = argv[++i];
       } else {
         error = "unknown option '" + a + "'";
-        return;
       }
     }
   }
@@ -66,7 +78,7 @@ struct Options {
   }
 
   // An integer within [lo, hi], or the default when absent.
-  bool integer(const std::string& name, long lo, long hi, long fallback, long* out) {
+  bool integer(const std::string& name, long long lo, long long hi, long long fallback, long long* out) {
     double v;
     if (!number(name, static_cast<double>(lo), static_cast<double>(hi), static_cast<double>(fallback), &v))
       return false;
@@ -74,7 +86,7 @@ struct Options {
       error = name + ": '" + values[name] + "' is not a whole number";
       return false;
     }
-    *out = static_cast<long>(v);
+    *out = static_cast<long long>(v);
     return true;
   }
 };

@@ -4,6 +4,9 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <vector>
+
+#include "api/limits.h"
 
 namespace gaitlab::gait {
 
@@ -11,25 +14,57 @@ namespace {
 
 using nlohmann::json;
 
-// nlohmann's DOM parser, with exceptions compiled out, only says "discarded". This SAX pass
-// recovers its message (line and column) for a file that is not JSON at all.
-struct SyntaxCheck : json::json_sax_t {
+// The limits of api/limits.h, checked in one pass over the text before any document is built:
+// nlohmann's SAX parser is iterative, so this pass holds one counter per level however deep the
+// text goes, and stops at the first breach. Only text that passes is parsed into a DOM (whose
+// copies and dump() recurse, and so must never see untrusted depth). nlohmann's DOM parser,
+// with exceptions compiled out, only says "discarded": this pass also recovers its message (line
+// and column) for a file that is not JSON at all.
+struct LimitCheck : json::json_sax_t {
   std::string error;
-  bool null() override { return true; }
-  bool boolean(bool) override { return true; }
-  bool number_integer(number_integer_t) override { return true; }
-  bool number_unsigned(number_unsigned_t) override { return true; }
-  bool number_float(number_float_t, const string_t&) override { return true; }
-  bool string(string_t&) override { return true; }
-  bool binary(binary_t&) override { return true; }
-  bool start_object(std::size_t) override { return true; }
-  bool key(string_t&) override { return true; }
-  bool end_object() override { return true; }
-  bool start_array(std::size_t) override { return true; }
-  bool end_array() override { return true; }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
-    error = e.what();
+  std::vector<long> counts;  // elements so far of each open array or object, innermost last
+  bool value() {
+    if (!counts.empty() && ++counts.back() > limits::kMaxJsonArray)
+      return fail("an array or object has more than " + std::to_string(limits::kMaxJsonArray) + " elements");
+    return true;
+  }
+  bool fail(std::string message) {
+    error = std::move(message);
     return false;
+  }
+  bool text(const string_t& s) {
+    if (static_cast<long>(s.size()) > limits::kMaxJsonString)
+      return fail("a string is longer than " + std::to_string(limits::kMaxJsonString) + " bytes");
+    return true;
+  }
+  bool open() {
+    if (!value()) return false;
+    if (static_cast<int>(counts.size()) >= limits::kMaxJsonDepth)
+      return fail("nested deeper than " + std::to_string(limits::kMaxJsonDepth) + " levels");
+    counts.push_back(0);
+    return true;
+  }
+  bool close() {
+    counts.pop_back();
+    return true;
+  }
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t& s) override { return text(s) && value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(); }
+  // A key is counted with its value, not on its own.
+  bool key(string_t& s) override { return text(s); }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+    std::string what = e.what();  // its "last read" may quote a long token
+    if (what.size() > 200) what = what.substr(0, 197) + "...";
+    return fail("not valid JSON: " + what);
   }
 };
 
@@ -43,6 +78,14 @@ std::string typeName(const json& v) {
 }
 
 std::string num(double v) { return json(v).dump(); }
+
+// A value as it appears in a message: at most 80 characters of its JSON (a refused field may be
+// a long string or a large object).
+std::string shown(const json& v) {
+  std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
+  if (text.size() > 80) text = text.substr(0, 77) + "...";
+  return text;
+}
 
 // One value of a field: a finite number within the spec's bounds.
 std::optional<std::string> checkNumber(const json& v, const ParamSpec& s, double* out) {
@@ -71,13 +114,13 @@ std::optional<ParamsError> readValue(const json& v, const ParamSpec& s, double* 
   return std::nullopt;
 }
 
-// Parses JSON text, or says where it stops being JSON.
+// Parses JSON text within api/limits.h's limits, or says where it stops being JSON or which
+// limit it breaks.
 std::optional<ParamsError> parseJson(const std::string& text, json* out) {
+  if (auto error = checkJsonText(text)) return error;
   *out = json::parse(text, nullptr, false);
-  if (!out->is_discarded()) return std::nullopt;
-  SyntaxCheck check;
-  json::sax_parse(text, &check);
-  return ParamsError{"", "not valid JSON: " + (check.error.empty() ? "parse error" : check.error)};
+  if (out->is_discarded()) return ParamsError{"", "not valid JSON"};  // the check said it was
+  return std::nullopt;
 }
 
 // Brings the parameters of a file made against schema `version` up to kSchemaVersion, one
@@ -113,6 +156,16 @@ void migrateParams(int version, json* params) {
 
 }  // namespace
 
+std::optional<ParamsError> checkJsonText(const std::string& text) {
+  if (static_cast<long>(text.size()) > limits::kMaxJsonBytes)
+    return ParamsError{"", "the text is " + std::to_string(text.size()) + " bytes long; at most " +
+                               std::to_string(limits::kMaxJsonBytes) + " are accepted"};
+  LimitCheck check;
+  if (!json::sax_parse(text, &check) || !check.error.empty())
+    return ParamsError{"", check.error.empty() ? "not valid JSON" : check.error};
+  return std::nullopt;
+}
+
 std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<Character> expected,
                                          GaitFile* out) {
   json doc;
@@ -124,12 +177,12 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   }
   if (!doc.contains("format")) return ParamsError{"format", "missing"};
   if (doc["format"] != kGaitFormat)
-    return ParamsError{"format", "expected \"" + std::string(kGaitFormat) + "\", got " + doc["format"].dump()};
+    return ParamsError{"format", "expected \"" + std::string(kGaitFormat) + "\", got " + shown(doc["format"])};
   if (!doc.contains("version")) return ParamsError{"version", "missing"};
   if (!doc["version"].is_number_integer() || doc["version"].get<long long>() < 1 ||
       doc["version"].get<long long>() > kGaitFormatVersion)
     return ParamsError{"version", "expected 1 to " + std::to_string(kGaitFormatVersion) + ", got " +
-                                      doc["version"].dump()};
+                                      shown(doc["version"])};
   const int version = static_cast<int>(doc["version"].get<long long>());
   if (!doc.contains("character")) return ParamsError{"character", "missing"};
   const json& cj = doc["character"];
@@ -138,7 +191,7 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   if (!character) {
     std::string names;
     for (Character c : kCharacters) names += std::string(names.empty() ? "" : " or ") + "\"" + characterName(c) + "\"";
-    return ParamsError{"character", "expected " + names + ", got " + cj.dump()};
+    return ParamsError{"character", "expected " + names + ", got " + shown(cj)};
   }
   if (expected && *expected != *character)
     return ParamsError{"character", std::string("the file is for a ") + characterName(*character) +
@@ -209,9 +262,16 @@ std::optional<ParamsError> loadGaitFile(const std::string& path, std::optional<C
                                         GaitFile* out) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return ParamsError{"", "cannot be read"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseGaitFile(text.str(), expected, out);
+  // At most one byte more than a gait file may have: a huge file, or an endless one such as
+  // /dev/zero or a FIFO that never closes its end, is refused after reading no more than that.
+  std::string text(static_cast<size_t>(limits::kMaxJsonBytes) + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) return ParamsError{"", "cannot be read"};
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (static_cast<long>(text.size()) > limits::kMaxJsonBytes)
+    return ParamsError{"", "the file is longer than " + std::to_string(limits::kMaxJsonBytes) +
+                               " bytes, more than any gait file"};
+  return parseGaitFile(text, expected, out);
 }
 
 std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::json& meta, int indent) {
@@ -227,8 +287,12 @@ std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::
   });
   ordered doc = {{"format", kGaitFormat}, {"version", kGaitFormatVersion},
                  {"character", characterName(c)}, {"params", p}};
-  if (!meta.empty()) doc["meta"] = ordered::parse(meta.dump(), nullptr, false);
-  if (indent < 0) return doc.dump();
+  // Strings of "meta" may come from outside (a command line in another encoding): any byte that is
+  // not UTF-8 is written as U+FFFD rather than stopping the program (dump() aborts on it
+  // otherwise, exceptions being compiled out).
+  constexpr auto kReplace = json::error_handler_t::replace;
+  if (!meta.empty()) doc["meta"] = ordered::parse(meta.dump(-1, ' ', false, kReplace), nullptr, false);
+  if (indent < 0) return doc.dump(-1, ' ', false, kReplace);
   // Readable layout for files people edit and diff: one parameter per line, a motion graph's
   // knots together on its line. Every value is still written by nlohmann (shortest text that
   // reads back to the same double).
@@ -239,7 +303,7 @@ std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::
     out += (firstKey ? "" : ",\n") + pad + ordered(item.key()).dump() + ": ";
     firstKey = false;
     if (item.key() != "params") {
-      out += item.value().dump();
+      out += item.value().dump(-1, ' ', false, kReplace);
       continue;
     }
     out += "{\n";

@@ -39,13 +39,19 @@ struct GaitFile {
   nlohmann::json meta = nlohmann::json::object();
 };
 
+// Whether `text` is JSON within the limits of api/limits.h (bytes, nesting depth, string and
+// array lengths), checked in one iterative pass that builds nothing: every JSON text from outside
+// goes through this before it is parsed. Returns the problem (empty field), or nullopt.
+std::optional<ParamsError> checkJsonText(const std::string& text);
+
 // Parses and validates `text`. With `expected`, a file for another character is refused.
 // On success fills *out and returns nullopt; on failure returns the error and leaves *out as it
 // was.
 std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<Character> expected,
                                          GaitFile* out);
 
-// The same, reading a file from disk (an unreadable file is an error with an empty field).
+// The same, reading a file from disk (an unreadable file is an error with an empty field). It
+// reads no more than api/limits.h's kMaxJsonBytes + 1 bytes, so an endless file returns too.
 std::optional<ParamsError> loadGaitFile(const std::string& path, std::optional<Character> expected,
                                         GaitFile* out);
 

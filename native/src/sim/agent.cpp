@@ -12,9 +12,15 @@ Agent::Agent(physics::World& w, const body::Morphology& m, const Eigen::Vector3d
       torques(m.segments.size(), Eigen::Vector3d::Zero()),
       world(&w) {
   for (size_t l = 0; l < m.legs.size(); ++l) body->setFootContactFlag(static_cast<int>(l), &footContact[l]);
+  lastGood = body->segmentState(m.legFrames[0]).position;
+  lastGoodHeading = heading;
 }
 
 void Agent::control() {
+  if (broken) {  // a state that is not finite gives no torques worth applying
+    ++updates;
+    return;
+  }
   body->readState(state.data());
   gait::CharacterState cs;
   cs.segments = state.data();

@@ -34,6 +34,14 @@ struct Agent {
   bool down = false;        // hasFallen after the last step (set in its shard's task)
   double fallenSince = -1;  // simulated time it was first seen fallen; -1 = standing
   int shard = 0;
+  // A state that stopped being finite (a physics blow-up; scene commands are checked for
+  // finiteness where they enter): set in its shard's task, after which the character is down,
+  // its controller no longer runs and its bodies are parked out of the simulation
+  // (Simulation::isolateBroken) until a reset rebuilds it at `lastGood`.
+  bool broken = false;
+  bool parked = false;
+  Eigen::Vector3d lastGood;    // the root leg frame's last finite position
+  double lastGoodHeading = 0;  // and heading
   uint64_t updates = 0;  // controller runs: each fixed step must run it exactly once
 };
 

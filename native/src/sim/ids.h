@@ -25,6 +25,8 @@ class IdPool {
 
   // A new id whose value() is `value`; -1 when every slot is in use or retired.
   int create(int value);
+  // How many more ids create() can hand out now.
+  int room() const { return static_cast<int>(free_.size()) + kSlots - static_cast<int>(slots_.size()); }
   // Frees the slot of `id` (nothing if `id` is not live).
   void destroy(int id);
   // Whether `id` names a live thing: its slot is in use by that very generation.

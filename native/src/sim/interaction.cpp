@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "api/limits.h"
 #include "gait/heading.h"
 #include "physics/convert.h"
 #include "sim/simulation.h"
@@ -48,7 +49,16 @@ void Simulation::setGoal(int i, const gait::Goal& goal) {
 
 int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& velocity,
                          double half) {
-  if (!render_.hasRoom(1)) return -1;
+  // At the most boxes a scene takes, the oldest thrown box makes way first (when there is one).
+  if (boxRoom() < 1 && !interaction_.thrown.empty() && boxes_ >= limits::kMaxBoxes) {
+    const ThrownBox oldest = interaction_.thrown.front();
+    interaction_.thrown.pop_front();
+    render_.remove({oldest.body});
+    shards_.removeProp(oldest.body);
+    ids_.destroy(oldest.id);
+    --boxes_;
+  }
+  if (boxRoom() < 1) return -1;
   const int id = ids_.create(-1);
   if (id < 0) return -1;
   // Solid wood, roughly (600 kg/m³): a 0.24 m box weighs ~8 kg, enough at 10-15 m/s to knock
@@ -63,12 +73,14 @@ int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& vel
   const float h = static_cast<float>(half);
   render_.add(b, {{h, h, h}, 0xc08a48ffu, -1, 0});
   interaction_.thrown.push_back({b, id});
+  ++boxes_;
   if (static_cast<int>(interaction_.thrown.size()) > kMaxThrown) {
     const ThrownBox oldest = interaction_.thrown.front();
     interaction_.thrown.pop_front();
     render_.remove({oldest.body});
     shards_.removeProp(oldest.body);
     ids_.destroy(oldest.id);
+    --boxes_;
   }
   return id;
 }
@@ -97,8 +109,12 @@ bool Simulation::resetCharacter(int id) {
   Agent& old = *agents_[i];
   const body::Morphology& m = old.body->morphology();
   const int root = m.legFrames[0];
-  const physics::SegmentState s = old.body->segmentState(root);
-  const double heading = gait::headingOf(s.orientation);
+  physics::SegmentState s = old.body->segmentState(root);
+  double heading = gait::headingOf(s.orientation);
+  if (old.broken) {  // rebuilt where it last stood with a finite state (isolate)
+    s.position = old.lastGood;
+    heading = old.lastGoodHeading;
+  }
   // The rest pose puts the root at `center` in the character frame: place the new figure so
   // that its root stands where the old one's is now.
   const Eigen::Vector3d offset =
@@ -138,11 +154,36 @@ bool Simulation::removeCharacter(int id) {
   return true;
 }
 
+void Simulation::isolate(Agent& a) {
+  // Its bodies leave the simulation where it last stood: finite transforms (the render buffer,
+  // the state hash and the props' nearest-character search read them), no velocity, never
+  // integrated again (DISABLE_SIMULATION), and no contact response, so nothing that touches them
+  // inherits what is not finite. The constraints between them are never solved, as neither of
+  // their bodies is active. A reset rebuilds the character from `lastGood`.
+  btDiscreteDynamicsWorld& world = shards_.world(a.shard).dynamics();
+  btTransform parked(btQuaternion(btVector3(0, 1, 0), static_cast<btScalar>(a.lastGoodHeading)),
+                     physics::toBt(a.lastGood));
+  for (int k = 0; k < a.body->segmentCount(); ++k) {
+    btRigidBody* b = a.body->body(k);
+    b->setCenterOfMassTransform(parked);
+    b->setInterpolationWorldTransform(parked);
+    b->setLinearVelocity(btVector3(0, 0, 0));
+    b->setAngularVelocity(btVector3(0, 0, 0));
+    b->clearForces();
+    b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_NO_CONTACT_RESPONSE);
+    b->forceActivationState(DISABLE_SIMULATION);
+    world.updateSingleAabb(b);
+  }
+  a.parked = true;
+  if (interaction_.drag.id == a.id) endDrag();
+}
+
 void Simulation::updateFallen() {
   const double now = time();
   std::vector<int> toReset;  // empty, so no allocation, unless a reset is due
   for (auto& agent : agents_) {
     Agent& a = *agent;
+    if (a.broken && !a.parked) isolate(a);
     if (!a.down) {
       a.fallenSince = -1;
       continue;

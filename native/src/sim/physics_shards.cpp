@@ -7,9 +7,31 @@
 #include <iterator>
 #include <limits>
 
+#include "gait/heading.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::sim {
+
+namespace {
+
+// Whether every body of a character has a finite position, orientation and velocities.
+bool finiteState(const physics::Character& c) {
+  for (int k = 0; k < c.segmentCount(); ++k) {
+    const btRigidBody* b = c.body(k);
+    const btTransform& t = b->getCenterOfMassTransform();
+    const btQuaternion q = t.getRotation();
+    const btVector3& p = t.getOrigin();
+    const btVector3& v = b->getLinearVelocity();
+    const btVector3& w = b->getAngularVelocity();
+    // NaN and infinity both make the sum non-finite (inf - inf, or inf itself).
+    const double sum = double(p.x()) + p.y() + p.z() + q.x() + q.y() + q.z() + q.w() + v.x() + v.y() + v.z() +
+                       w.x() + w.y() + w.z();
+    if (!std::isfinite(sum)) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 PhysicsShards::PhysicsShards(int shards, uint32_t seed) {
   if (shards < 1) shards = 1;
@@ -111,7 +133,15 @@ void PhysicsShards::step(int shard) {
   worlds_[shard]->updateContacts();
   // The fall test here rather than after the step: in full mode it then runs on the shard's
   // thread instead of in the serial tail of the step (a ground-height query per character).
-  for (Agent* a : shardAgents_[shard]) a->down = hasFallen(*a->body, *worlds_[shard]);
+  for (Agent* a : shardAgents_[shard]) {
+    if (!a->broken && !finiteState(*a->body)) a->broken = true;
+    a->down = a->broken || hasFallen(*a->body, *worlds_[shard]);
+    if (!a->broken) {
+      const physics::SegmentState root = a->body->segmentState(a->body->morphology().legFrames[0]);
+      a->lastGood = root.position;
+      a->lastGoodHeading = gait::headingOf(root.orientation);
+    }
+  }
 }
 
 void PhysicsShards::setTerrain(std::shared_ptr<const physics::Terrain> terrain) {

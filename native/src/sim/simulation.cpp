@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "api/limits.h"
 #include "gait/heading.h"
+#include "sim/capacity.h"
 #include "sim/state_hash.h"
 
 namespace gaitlab::sim {
@@ -48,19 +51,20 @@ int Simulation::spawn(Character kind, double x, double z, double heading) {
 }
 
 int Simulation::spawnBox(double x, double z, double heading) {
-  if (!render_.hasRoom(1)) return -1;
+  if (boxRoom() < 1) return -1;
   const int id = ids_.create(-1);
   if (id < 0) return -1;
   btRigidBody* b = shards_.addProp(
       agents_, Eigen::Vector3d::Constant(0.15), 4.0, {x, 1.5, z},
       Eigen::Quaterniond(Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY())));
   render_.add(b, {{0.15f, 0.15f, 0.15f}, 0xe0c068ffu, -1, 0});
+  ++boxes_;
   return id;
 }
 
 int Simulation::spawnCharacter(Character kind, double x, double z, double heading, int shard) {
   const body::Morphology& m = kind == Character::Biped ? biped_ : quadruped_;
-  if (!render_.hasRoom(static_cast<int>(m.segments.size()))) return -1;
+  if (characterRoom(kind) < 1) return -1;
   const int id = ids_.create(characterCount());
   if (id < 0) return -1;
   physics::World& world = shards_.world(shard);
@@ -101,7 +105,7 @@ void Simulation::demoScene(int characters) {
   const double width = SceneLayout::kSpacingX * std::max(1.0, std::ceil(std::sqrt(characters)));
   for (int i = 0; i < std::max(2, characters / 2); ++i) {
     const double x = (rng.next() - 0.5) * width, z = (rng.next() - 0.5) * width;
-    spawnBox(x, z, rng.next() * kPi);
+    if (spawnBox(x, z, rng.next() * kPi) < 0) break;  // no room for more
   }
   publish();
 }
@@ -119,6 +123,47 @@ void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
     c.setPhase(std::fmod(i * 0.6180339887498949, 1.0));  // golden-ratio sequence: evenly spread
   }
   publish();
+}
+
+// ---- Capacity -----------------------------------------------------------------------------------
+
+namespace {
+int64_t bytesOf(int kindOrBox) {
+  return kindOrBox == 0 ? kBipedBytes : kindOrBox == 1 ? kQuadrupedBytes : kBoxBytes;
+}
+// How many things of `bytes` and `bodies` the heap can still afford (natively: no heap limit).
+int heapRoom(int64_t bytes, int bodies, int worldBodies) {
+  const int64_t headroom = heapHeadroom();
+  if (headroom < 0) return std::numeric_limits<int>::max();
+  return static_cast<int>(std::min<int64_t>(affordable(headroom, bytes, bodies, worldBodies),
+                                            std::numeric_limits<int>::max()));
+}
+}  // namespace
+
+int Simulation::characterRoom(Character kind) const {
+  const int segments = static_cast<int>((kind == Character::Biped ? biped_ : quadruped_).segments.size());
+  const int render = (kRenderCapacity - render_.count()) / segments;
+  // Every body of the scene counts towards the world's solver pools: one shard's world holds at
+  // most all of them.
+  return std::max(0, std::min({render, ids_.room(), heapRoom(bytesOf(static_cast<int>(kind)), segments, render_.count())}));
+}
+
+int Simulation::boxRoom() const {
+  return std::max(0, std::min({kRenderCapacity - render_.count(), ids_.room(), limits::kMaxBoxes - boxes_,
+                               heapRoom(kBoxBytes, 1, render_.count())}));
+}
+
+std::string Simulation::fullReason(int kindOrBox) const {
+  const bool box = kindOrBox == 2;
+  const int segments = box ? 1 : static_cast<int>((kindOrBox == 0 ? biped_ : quadruped_).segments.size());
+  if (box && boxes_ >= limits::kMaxBoxes)
+    return "the scene holds " + std::to_string(limits::kMaxBoxes) + " boxes, the most a simulation takes";
+  if (kRenderCapacity - render_.count() < segments)
+    return "the render buffer is full (" + std::to_string(kRenderCapacity) + " bodies)";
+  if (ids_.room() < 1) return "every id is in use";
+  return "the module's memory is nearly full (" + std::to_string(std::max<int64_t>(0, heapHeadroom()) >> 20) +
+         " MiB left beside its reserve, and another " + (box ? std::string("box") : kindOrBox == 0 ? "biped" : "quadruped") +
+         " with the physics world's growth needs more)";
 }
 
 // ---- Stepping -----------------------------------------------------------------------------------

@@ -137,6 +137,21 @@ class Simulation {
     return fallen(index) ? time() - agents_[index]->fallenSince : 0.0;
   }
 
+  // Whether character i's state stopped being finite (a physics blow-up): it counts as fallen,
+  // its bodies are out of the simulation, and any reset rebuilds it standing where it last
+  // stood with a finite state.
+  bool broken(int index) const { return agents_[index]->broken; }
+
+  // ---- Capacity (capacity.h) ------------------------------------------------------------------
+  // How many more characters of `kind`, or boxes, the simulation can take now: the least of the
+  // render buffer's room, the free ids, api/limits.h's kMaxBoxes for boxes, and in the WASM build
+  // the heap left (capacity.h). A spawn beyond it is refused before it allocates.
+  int characterRoom(Character kind) const;
+  int boxRoom() const;
+  // Why the room is 0 (what is full), for the refusal's message.
+  std::string fullReason(int kindOrBox) const;
+  int boxCount() const { return boxes_; }
+
   // ---- Output ---------------------------------------------------------------------------------
   int bodyCount() const { return render_.count(); }
   const RenderHeader* renderBuffer() const { return render_.header(); }
@@ -188,6 +203,7 @@ class Simulation {
   void updateFallen();  // interaction.cpp: fall times and the automatic reset, after it
   void runSteps(int steps);
   void steerWanderers();  // wander.h: the wanderers' turn rates, between fixed steps
+  void isolate(Agent& a);  // interaction.cpp: parks a character whose state is not finite
 
   uint32_t seed_;
   body::Morphology biped_, quadruped_;
@@ -200,6 +216,7 @@ class Simulation {
   Stepping stepping_;
   Interaction interaction_;
   Wander wander_;
+  int boxes_ = 0;  // props alive: spawned and thrown boxes
 };
 
 }  // namespace gaitlab::sim

@@ -166,6 +166,29 @@ describe('gait links', () => {
     expect((await problemOf(`#gait=1.${bomb.length}.${bomb}`)).problem).toBe('too-long');
   });
 
+  it('refuse a short link whose gait is nested thousands deep, before anything parses it', async () => {
+    // About 1.5 kB of link: deflate packs 100,000 brackets into almost nothing.
+    for (const field of ['format', 'version', 'character', 'params', 'meta']) {
+      const json = `{"format":"gaitlab-gait","version":2,"character":"biped","params":{},"${field}":${'['.repeat(100000)}${']'.repeat(100000)}}`
+        .replace(`"${field}":"gaitlab-gait"`, '').replace(`"${field}":2,`, '').replace(`"${field}":{},`, '');
+      const text = new TextEncoder().encode(json);
+      const packed = new Uint8Array(await new Response(new Blob([text]).stream().pipeThrough(new CompressionStream('deflate-raw'))).arrayBuffer());
+      const bytes = new Uint8Array(4 + packed.length);
+      new DataView(bytes.buffer).setUint32(0, crc32(text));
+      bytes.set(packed, 4);
+      const data = toBase64Url(bytes);
+      expect(data.length).toBeLessThan(MAX_LINK_CHARS);
+      let called = false;
+      const { problem, message } = await problemOf(`#gait=1.${data.length}.${data}`, async (j) => {
+        called = true;
+        return JSON.parse(j) as GaitFile;
+      });
+      expect(problem).toBe('corrupt');
+      expect(message).toMatch(/nested deeper than 16 levels/);
+      expect(called).toBe(false);
+    }
+  });
+
   it('refuse unknown versions of the link', async () => {
     const hash = await encodeGaitHash(presetGait(schema, 'biped'));
     const v9 = await problemOf(hash.replace('#gait=1.', '#gait=9.'));

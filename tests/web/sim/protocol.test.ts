@@ -33,13 +33,34 @@ describe('simOptionsFromQuery', () => {
     });
   });
 
-  it('ignores values that are not integers in range', () => {
-    const options = simOptionsFromQuery('?threads=0&seed=-3&characters=2.5', defaults);
-    expect(options).toEqual(defaults);
-    expect(simOptionsFromQuery('?threads=abc&seed=4294967296&characters=9999', defaults)).toEqual(defaults);
+  it('replaces a value out of range by the nearest valid one, and says so', () => {
+    const notes: string[] = [];
+    expect(simOptionsFromQuery('?threads=0&seed=-3&characters=2.5', defaults, notes)).toEqual({ ...defaults, threads: 1, seed: 0, characters: 3 });
+    expect(notes).toEqual([
+      '?threads=0 is not a whole number in [1, 5]: using 1',
+      '?seed=-3 is not a whole number in [0, 4294967295]: using 0',
+      '?characters=2.5 is not a whole number in [0, 256]: using 3',
+    ]);
+    notes.length = 0;
+    expect(simOptionsFromQuery('?threads=abc&seed=4294967296&characters=300', defaults, notes)).toEqual({
+      ...defaults,
+      seed: 4294967295,
+      characters: 256,
+    });
+    expect(notes).toEqual([
+      '?threads=abc is not a number: using 2',
+      '?seed=4294967296 is not a whole number in [0, 4294967295]: using 4294967295',
+      '?characters=300 is not a whole number in [0, 256]: using 256',
+    ]);
     // More threads than the module's pthread pool serves would hang the simulation.
-    expect(simOptionsFromQuery(`?threads=${MAX_THREADS + 1}`, defaults).threads).toBe(defaults.threads);
+    expect(simOptionsFromQuery(`?threads=${MAX_THREADS + 1}`, defaults).threads).toBe(MAX_THREADS);
     expect(simOptionsFromQuery(`?threads=${MAX_THREADS}`, defaults).threads).toBe(MAX_THREADS);
+    notes.length = 0;
+    expect(simOptionsFromQuery('?terrain=lava&threads=1e400', defaults, notes)).toEqual(defaults);
+    expect(notes).toEqual(['?terrain=lava is not flat, slope or bumps: using flat', '?threads=1e400 is not a number: using 2']);
+    notes.length = 0;
+    expect(simOptionsFromQuery('?threads=2&seed=9', defaults, notes)).toEqual({ ...defaults, seed: 9 });
+    expect(notes).toEqual([]);
   });
 
   it('starts paused only with paused=1', () => {

@@ -18,6 +18,7 @@
 // a refusal on as problem 'refused' with the module's "FIELD: WHAT". The page then shows the
 // message and runs with the presets.
 import { GaitError, type GaitFile, type GaitNormalizer } from './gait-file';
+import { jsonLimitProblem, MAX_JSON_BYTES as MAX_GAIT_FILE_BYTES } from '../sim/limits';
 
 export const LINK_VERSION = 1;
 export const HASH_KEY = 'gait';
@@ -27,8 +28,11 @@ export const HASH_KEY = 'gait';
  * made by this page.
  */
 export const MAX_LINK_CHARS = 8192;
-/** Most bytes the data may inflate to (guards against a small link that inflates to gigabytes). */
-export const MAX_JSON_BYTES = 256 * 1024;
+/**
+ * Most bytes the data may inflate to (guards against a small link that inflates to gigabytes):
+ * the most a gait file may have (native/src/api/limits.h, web/src/sim/limits.ts).
+ */
+export const MAX_JSON_BYTES = MAX_GAIT_FILE_BYTES;
 
 // ---- base64url (RFC 4648 §5, no padding) ------------------------------------------------------
 
@@ -155,6 +159,14 @@ export async function decodeGaitHash(hash: string, normalize: GaitNormalizer): P
   let json: string;
   try {
     json = new TextDecoder('utf-8', { fatal: true }).decode(text);
+  } catch {
+    throw new GaitError('corrupt', 'the link data is not a JSON gait');
+  }
+  // Within the limits of a gait file before anything parses it: a 1.5 kB link can inflate to a
+  // gait nested 100,000 deep, which JSON.parse builds and every later JSON.stringify overflows on.
+  const problem = jsonLimitProblem(json);
+  if (problem) throw new GaitError(problem.startsWith('nested') ? 'corrupt' : 'too-long', `the link's gait is refused: ${problem}`);
+  try {
     JSON.parse(json);
   } catch {
     throw new GaitError('corrupt', 'the link data is not a JSON gait');

@@ -32,6 +32,7 @@ export interface GaitlabModule {
   _gl_sim_create(threads: number, seed: number): number;
   _gl_sim_destroy(sim: number): void;
   _gl_sim_spawn(sim: number, kind: number, x: number, z: number, heading: number): number;
+  _gl_sim_room(sim: number, kind: number): number;
   _gl_sim_add_characters(sim: number, kind: number, count: number): number;
   _gl_sim_add_apart(sim: number, kind: number): number;
   _gl_cruise_speed(kind: number): number;
@@ -310,7 +311,8 @@ export class Simulation {
 
   constructor(module: GaitlabModule, threads: number, seed: number) {
     this.module = module;
-    this.handle = module._gl_sim_create(threads, seed >>> 0);
+    // NULL when the module cannot afford another simulation (its heap, or its fixed pthread pool).
+    this.handle = checkPointer(module, 'gl_sim_create', module._gl_sim_create(threads, seed >>> 0));
   }
 
   private get sim(): number {
@@ -329,6 +331,14 @@ export class Simulation {
   /** Spawns a thing of `kind` (Kind) standing at (x, z); returns its id. */
   spawn(kind: number, x: number, z: number, heading: number): number {
     return this.check('gl_sim_spawn', this.module._gl_sim_spawn(this.sim, kind, x, z, heading));
+  }
+
+  /**
+   * How many more things of `kind` (Kind) the simulation can take now (gl_sim_room): the render
+   * buffer's room, the most boxes a scene holds, and what the module's fixed heap can afford.
+   */
+  room(kind: number): number {
+    return this.check('gl_sim_room', this.module._gl_sim_room(this.sim, kind));
   }
 
   /**

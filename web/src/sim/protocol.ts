@@ -107,10 +107,10 @@ export interface CharacterStatus {
 }
 
 /**
- * Most characters the demo page holds. The module's render buffer has room for 16384 bodies
- * (910 quadrupeds), but its fixed 256 MB of memory runs out first (an abort near 600
- * quadrupeds); 256 characters of either type fit with room to spare, and stay near real time on
- * a 4-core machine. The page refuses more, saying so.
+ * Most characters the demo page holds: 256 of either type stay near real time on a 4-core
+ * machine. The module has its own, larger limit from its memory (gl_sim_room: about 1200 bipeds
+ * or 480 quadrupeds in a new scene, README "Limits"); the worker refuses an add beyond either,
+ * naming the nearer.
  */
 export const MAX_CHARACTERS = 256;
 
@@ -220,25 +220,41 @@ export function defaultThreads(hardwareConcurrency: number | undefined): number 
   return Math.max(1, Math.min(cores, MAX_THREADS));
 }
 
+/** Most characters the page's `?characters=` may ask for at the start. */
+export const MAX_START_CHARACTERS = 256;
+
 /**
  * Simulation options from the page's query string, e.g. `?threads=1&seed=7&characters=12` (and
- * `terrain=slope|bumps`). Values out of range or not integers are ignored in favour of the defaults.
+ * `terrain=slope|bumps`). A number out of range is replaced by the nearest valid value
+ * (`?threads=0` runs 1 thread, `?characters=300` starts 256), anything else that is not valid by
+ * the default; each replacement is said in `notes` (the page shows them), never done silently.
  */
-export function simOptionsFromQuery(search: string, defaults: SimOptions): SimOptions {
+export function simOptionsFromQuery(search: string, defaults: SimOptions, notes: string[] = []): SimOptions {
   const query = new URLSearchParams(search);
   const int = (name: string, min: number, max: number, fallback: number): number => {
     const raw = query.get(name);
-    if (raw === null || !/^\d+$/.test(raw.trim())) return fallback;
-    const value = Number(raw);
-    return value >= min && value <= max ? value : fallback;
+    if (raw === null) return fallback;
+    const text = raw.trim();
+    const value = text === '' || !/^[-+]?(\d+\.?\d*|\.\d+)(e[-+]?\d+)?$/i.test(text) ? NaN : Number(text);
+    if (!Number.isFinite(value)) {
+      notes.push(`?${name}=${raw} is not a number: using ${fallback}`);
+      return fallback;
+    }
+    const nearest = Math.min(max, Math.max(min, Math.round(value)));
+    if (nearest !== value) notes.push(`?${name}=${raw} is not a whole number in [${min}, ${max}]: using ${nearest}`);
+    return nearest;
   };
+  const terrain = query.get('terrain');
+  if (terrain !== null && !isTerrainKind(terrain)) notes.push(`?terrain=${terrain} is not flat, slope or bumps: using ${defaults.terrain ?? 'flat'}`);
+  const paused = query.get('paused');
+  if (paused !== null && paused !== '1' && paused !== '0') notes.push(`?paused=${paused} is not 1 or 0: not paused`);
   return {
     wasmUrl: defaults.wasmUrl,
     threads: int('threads', 1, MAX_THREADS, defaults.threads),
     seed: int('seed', 0, 0xffffffff, defaults.seed),
-    characters: int('characters', 0, 256, defaults.characters),
-    ...(query.get('paused') === '1' ? { paused: true } : {}),
-    ...(isTerrainKind(query.get('terrain')) && query.get('terrain') !== 'flat' ? { terrain: query.get('terrain') as TerrainKind } : {}),
+    characters: int('characters', 0, MAX_START_CHARACTERS, defaults.characters),
+    ...(paused === '1' ? { paused: true } : {}),
+    ...(isTerrainKind(terrain) && terrain !== 'flat' ? { terrain } : {}),
   };
 }
 

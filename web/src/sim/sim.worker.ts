@@ -7,6 +7,7 @@
 //
 // This worker is also the Emscripten "main thread" of the module, so the module's pthread pool
 // consists of workers nested in this one.
+import { checkSimCommand } from './command-check';
 import { FixedStepClock } from './fixed-step-clock';
 import {
   ALTERNATING,
@@ -242,6 +243,12 @@ class WorkerScene {
     const { sim } = this;
     if (!sim) return;
     const added = sim.addCharacters(kindCode, count);
+    if (added < count) {
+      // The scene is full: say so with its real limits (gl_sim_room: the render buffer, and the
+      // memory the module can still afford) rather than adding fewer in silence.
+      const rooms = CHARACTER_TYPES.map((type) => `${sim.room(Kind[type])} more ${type}s`).join(', ');
+      post({ type: 'commandError', message: `added ${added} of ${count} characters: the scene is full (room now: ${rooms})` });
+    }
     const info = sim.characterInfo(); // the added characters are the last ones
     for (let o = info.length - added * INFO.fields; o < info.length; o += INFO.fields) {
       const id = info[o + INFO.id];
@@ -365,16 +372,21 @@ class WorkerScene {
         sim.removeCharacter(command.id);
         return;
       case 'add': {
-        const room = MAX_CHARACTERS - sim.characterCount;
+        // Two limits, whichever is nearer: the page's (MAX_CHARACTERS) and the module's memory
+        // (gl_sim_room), so an add is refused whole, with the limit named, before anything fails.
+        const pageRoom = MAX_CHARACTERS - sim.characterCount;
+        const moduleRoom = sim.room(Kind[command.kind]);
         const asked = Math.max(0, Math.min(64, Math.floor(command.count)));
-        if (asked > room) {
-          post({ type: 'commandError', message: `the crowd is at its limit: the page holds at most ${MAX_CHARACTERS} characters (${room} more)` });
+        if (asked > Math.min(pageRoom, moduleRoom)) {
+          post({
+            type: 'commandError',
+            message: moduleRoom < pageRoom
+              ? `the crowd is at its limit: the module's memory holds ${moduleRoom} more ${command.kind}s`
+              : `the crowd is at its limit: the page holds at most ${MAX_CHARACTERS} characters (${pageRoom} more)`,
+          });
           return;
         }
-        const before = sim.characterCount;
-        this.addCharacters(asked, Kind[command.kind]);
-        const added = sim.characterCount - before;
-        if (added < asked) post({ type: 'commandError', message: `only ${added} of ${asked} characters were added: the scene is full` });
+        this.addCharacters(asked, Kind[command.kind]);  // says so itself if fewer fit after all
         return;
       }
       case 'autoReset':
@@ -719,11 +731,35 @@ function handle(command: SimCommand): void {
 scope.onmessage = (event) => {
   if (scene?.hasFailed || failedEarly) return;
   try {
-    handle(event.data);
+    // Every message is checked before anything acts on it (command-check.ts): a refused one is
+    // answered with the field named, and the loop goes on.
+    const checked = checkSimCommand(event.data);
+    if (checked.ok) handle(checked.command);
+    else refuseMessage(event.data, checked.error, checked.request);
   } catch (error) {
     fail(error);
   }
 };
+
+/** Answers a refused message: a request gets its answer (with the refusal), anything else a commandError. */
+function refuseMessage(message: unknown, error: string, request: number | undefined): void {
+  const type = typeof message === 'object' && message !== null ? (message as { type?: unknown }).type : undefined;
+  if (type === 'init') {
+    fail(new Error(`the worker's options were refused: ${error}`));
+    return;
+  }
+  if (request !== undefined && (type === 'getParams' || type === 'getPreset' || type === 'normalize')) {
+    post({ type: 'params', request, json: null, error });
+    return;
+  }
+  const scene = type === 'scene' ? (message as { command?: { type?: unknown; request?: unknown } }).command : undefined;
+  const patchRequest = scene?.type === 'patchParams' ? scene.request : undefined;
+  if (typeof patchRequest === 'number' && Number.isInteger(patchRequest) && patchRequest >= 0) {
+    post({ type: 'patched', request: patchRequest, accepted: null, error });
+    return;
+  }
+  post({ type: 'commandError', message: `a message was refused: ${error}` });
+}
 
 // Errors outside the handlers above (e.g. thrown by the module's own callbacks).
 self.addEventListener('error', (event) => fail(event.error ?? event.message));

@@ -7,6 +7,7 @@
 // refused with the module's "FIELD: WHAT", which the page shows as it is.
 import { GaitError, type GaitFile } from '../share/gait-file';
 import { decodeGaitHash, encodeGaitHash, hasGait } from '../share/link';
+import { MAX_JSON_BYTES } from '../sim/limits';
 
 /** The sim worker's normaliser: the module's answer for a gait file's text. */
 export type NormalizeJson = (json: string) => Promise<string>;
@@ -72,6 +73,12 @@ export class GaitTransfer {
     input.addEventListener('change', async () => {
       const file = input.files?.[0];
       if (!file) return;
+      // Not read at all past the most a gait file may have (a 50 MB file would be read whole,
+      // copied to the worker and into the module only to be refused there).
+      if (file.size > MAX_JSON_BYTES) {
+        done({ name: file.name, problem: `the file is ${file.size} bytes long; a gait file has at most ${MAX_JSON_BYTES}` });
+        return;
+      }
       try {
         done({ name: file.name, gait: await this.normalize(await file.text()) });
       } catch (error) {

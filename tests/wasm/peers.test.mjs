@@ -25,6 +25,7 @@ test('npm run bench -- --peers --quick times every engine on both characters and
     'jolt-mt 2 1', 'jolt-mt 2 2', 'jolt-mt 4 1', 'jolt-mt 4 2',
   ]);
   for (const p of doc.points) {
+    assert.equal(p.skipped, undefined, key(p));
     assert.ok(p.ms_per_step > 0 && p.ms_min <= p.ms_per_step && p.ms_per_step <= p.ms_max, key(p));
     // A few steps after the start every engine's ragdolls still stand where they were built:
     // the biped's root 1.16 m up, the quadruped's 0.525 m (native/src/body/morphology.cpp).

@@ -392,7 +392,7 @@ GL_EXPORT const char* gl_bench_point(const gl_bench_settings* settings);
 // The morphology of GL_KIND_BIPED or GL_KIND_QUADRUPED as JSON (peers/morphology_json.h), for
 // another engine to build the same ragdoll; static. NULL for another kind.
 GL_EXPORT const char* gl_morphology_json(int kind);
-// `characters` (1 to 1000) ragdolls of `kind` on the crowd benchmark's grid, stepped by `threads`
+// `characters` (1 to 400) ragdolls of `kind` on the crowd benchmark's grid, stepped by `threads`
 // threads (clamped to [1, GL_MAX_THREADS]). NULL on refusal.
 GL_EXPORT void* gl_peer_scene_create(int kind, int characters, int threads);
 GL_EXPORT void gl_peer_scene_destroy(void* scene);

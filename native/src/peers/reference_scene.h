@@ -31,10 +31,9 @@
 
 namespace gaitlab::peers {
 
-// The most ragdolls a scene holds: the peer benchmark goes to 400; 1000 quadrupeds' bodies fit
-// the WebAssembly build's fixed heap with room to spare (the crowd benchmark's capacity probes
-// hold 1200 bipeds in half of it).
-constexpr int kMaxCharacters = 1000;
+// The most ragdolls a scene holds: the peer benchmark goes to 400. 400 quadrupeds take about
+// 100 MB of the WebAssembly build's fixed 256 MB heap (a walking one 244 KiB, README "Limits").
+constexpr int kMaxCharacters = 400;
 
 // A joint's motor: torque = kp·(rotation to the rest pose) − kd·(relative angular velocity).
 struct Motor {

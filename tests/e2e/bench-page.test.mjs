@@ -80,7 +80,7 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
     await page.goto(`${server.url}bench.html?legs=4&characters=30,40,50&threads=5&modes=full&steps=400&runs=3`, { waitUntil: 'load' });
     const hw = await page.evaluate(() => navigator.hardwareConcurrency);
     if (hw < 5) assert.match(await page.locator('.warn').innerText(), /above this device/);
-    await page.getByRole('button', { name: 'Run' }).click();
+    await page.getByRole('button', { name: 'Run', exact: true }).click();
     await page.waitForFunction(() => window.gaitlabBench.state === 'running');
     await page.getByRole('button', { name: 'Cancel' }).click();
     assert.equal(await waitFor(page, ['cancelled', 'done']), 'cancelled');

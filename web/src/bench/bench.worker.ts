@@ -68,7 +68,7 @@ async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<voi
  * The capacity search (capacity.ts) for bipeds, then quadrupeds: full mode on `threads` threads,
  * 240 steps a crowd (2 s simulated), one run; each type's search stops once `secondsPerType` are
  * spent (with the best answer so far). The quadrupeds' crowd is bounded by the module's memory
- * (it aborts near 600; the demo's page limit is 256), the bipeds' by the experiment's probes.
+ * (gl_bench_max_characters, asked again before each probe), and both by the probes' caps.
  */
 async function capacityRun(command: Extract<BenchCommand, { type: 'capacity' }>): Promise<void> {
   if (!crossOriginIsolated) throw new Error('the page is not cross-origin isolated: no WASM threads');
@@ -86,6 +86,13 @@ async function capacityRun(command: Extract<BenchCommand, { type: 'capacity' }>)
     const result = await searchCapacity(async (characters) => {
       await yieldToMessages();
       if (cancelled || (performance.now() - t0) / 1000 > command.secondsPerType) return Infinity;
+      // The module's room shrinks as probes come and go (freed solver pools below the heap's
+      // break are not counted as room: README "Limits"), so it is asked again before each probe;
+      // a crowd it cannot hold ends the search as one skipped ("at least").
+      if (characters > bench.maxCharacters(m, LEGS[legs])) {
+        post({ type: 'status', message: `the module's memory holds no more than ${bench.maxCharacters(m, LEGS[legs])} ${legs === 2 ? 'bipeds' : 'quadrupeds'} now` });
+        return Infinity;
+      }
       const point = bench.point(m, { legs: LEGS[legs], characters, threads: command.threads, mode: MODE.full, steps: 240, runs: 1, shards: 12, spacing: 4, seed: 1, frames: 0 });
       const stepMs = (point.step_ms as { mean: number }).mean;
       post({ type: 'capacityProbe', legs, characters, stepMs });

@@ -34,3 +34,27 @@ test('npm run bench -- --peers --quick times every engine on both characters and
   const md = fs.readFileSync(path.join(out, 'peers.md'), 'utf8');
   assert.match(md, /\| quadrupeds \| 4 \| 2 \|/);
 });
+
+test('the reference scene is refused, not aborted, when the module cannot hold it', async () => {
+  const { createRequire } = await import('node:module');
+  const createGaitlab = createRequire(import.meta.url)(path.join(root, 'build/wasm/gaitlab-node.cjs'));
+  const G = await createGaitlab({ wasmBinary: fs.readFileSync(path.join(root, 'build/wasm/gaitlab-node.wasm')), noExitRuntime: true });
+  try {
+    // 400 quadrupeds are charged about 130 MB of the 256 MB heap: a third scene cannot fit.
+    const scenes = [];
+    let refused = null;
+    for (let i = 0; i < 4 && !refused; ++i) {
+      const h = G._gl_peer_scene_create(1, 400, 1);
+      if (h) scenes.push(h);
+      else refused = G.UTF8ToString(G._gl_last_error());
+    }
+    assert.match(refused ?? '', /do not fit in the module's memory/);
+    assert.ok(scenes.length >= 1, 'one scene of 400 quadrupeds fits');
+    assert.equal(G._gl_peer_scene_step(scenes[0], 1), 0, 'the module still steps');
+    for (const h of scenes) G._gl_peer_scene_destroy(h);
+    assert.equal(G._gl_peer_scene_create(1, 0, 1), 0);
+    assert.match(G.UTF8ToString(G._gl_last_error()), /characters: 0 is outside \[1, 400\]/);
+  } finally {
+    G.PThread.terminateAllThreads();
+  }
+});

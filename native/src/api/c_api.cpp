@@ -597,8 +597,10 @@ const char* gl_bench_point(const gl_bench_settings* b) {
   s.seed = b->seed;
   s.frames = b->frames != 0;
   if (!takeWorkers(s.threads)) return refuse<const char*>(nullptr, noWorkers(s.threads));
-  point = gaitlab::api::benchJsonPoint(gaitlab::sim::runPoint(s)).dump();
+  const gaitlab::sim::PointResult result = gaitlab::sim::runPoint(s);
   giveWorkers(s.threads);
+  if (!result.error.empty()) return refuse<const char*>(nullptr, result.error);
+  point = gaitlab::api::benchJsonPoint(result).dump();
   return point.c_str();
 }
 
@@ -618,6 +620,14 @@ void* gl_peer_scene_create(int kind, int characters, int threads) {
   if (characters < 1 || characters > gaitlab::peers::kMaxCharacters)
     return refuse<void*>(nullptr, "characters: " + str(characters) + " is outside [1, " +
                                       str(gaitlab::peers::kMaxCharacters) + "]");
+  // Charged as the simulation charges its characters (sim/capacity.h), all in one world.
+  const int64_t headroom = gaitlab::sim::heapHeadroom();
+  const bool biped = c == Character::Biped;
+  const int bodies = static_cast<int>((biped ? gaitlab::body::makeBiped() : gaitlab::body::makeQuadruped()).segments.size());
+  if (headroom >= 0 &&
+      gaitlab::sim::affordable(headroom - gaitlab::sim::kSimulationBytes,
+                               biped ? gaitlab::sim::kBipedBytes : gaitlab::sim::kQuadrupedBytes, bodies, 0) < characters)
+    return refuse<void*>(nullptr, "characters: " + str(characters) + " do not fit in the module's memory now");
   return new gaitlab::peers::ReferenceScene(c, characters, clampThreads(threads));
 }
 

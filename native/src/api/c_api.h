@@ -381,8 +381,9 @@ typedef struct gl_bench_settings {
 GL_EXPORT void gl_bench_defaults(gl_bench_settings* settings);
 
 // Runs one point and returns its element of "points"; NULL on refusal (an argument out of
-// range, more characters than gl_bench_max_characters included). Valid until the next
-// gl_bench_point on the same thread.
+// range, more characters than gl_bench_max_characters included, or a crowd that the memory left
+// could not hold after all: gl_bench_max_characters is an estimate, the scene counts). Valid
+// until the next gl_bench_point on the same thread.
 GL_EXPORT const char* gl_bench_point(const gl_bench_settings* settings);
 
 // ---- The peer benchmark's reference scene (native/src/peers/reference_scene.h) -------------

@@ -347,7 +347,9 @@ int runBenchCli(int argc, char** argv) {
     const sim::PointSpec& s = grid[i];
     std::fprintf(stderr, "bench %zu/%zu: legs %s, %d characters, %d threads, %s\n", i + 1,
                  grid.size(), legsName(s.legs).c_str(), s.characters, s.threads, sim::modeName(s.mode));
-    const json p = benchJsonPoint(sim::runPoint(s));
+    const sim::PointResult result = sim::runPoint(s);
+    if (!result.error.empty()) return benchError(result.error);
+    const json p = benchJsonPoint(result);
     if (!p["deterministic"].get<bool>())
       std::fprintf(stderr, "gaitlab bench: runs of the same point ended in different states\n");
     if (asCsv) {

@@ -122,6 +122,12 @@ PointResult runPoint(const PointSpec& spec) {
     // timed steps.
     auto sim = std::make_unique<Simulation>(spec.threads, spec.seed, r.shards);
     sim->crowdScene(crowdOf(spec.legs), spec.characters, spec.spacing);
+    if (sim->characterCount() < spec.characters) {
+      // Timings labelled with a crowd that was not simulated would be wrong: say so instead.
+      r.error = "characters: only " + std::to_string(sim->characterCount()) + " of " +
+                std::to_string(spec.characters) + " fit in the memory left";
+      return r;
+    }
     sim->setMode(spec.mode);
     for (size_t s = 0; s < steps; ++s) {
       sim->step(1);

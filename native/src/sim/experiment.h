@@ -62,6 +62,9 @@ struct PointResult {
   int64_t heapBytes = 0, sceneHeapBytes = 0, rssBytes = -1;
   std::string stateHash;
   bool deterministic = true;  // every run ended in the same state
+  // Not empty when the point could not be measured as asked: a scene that held fewer characters
+  // than spec.characters (the module's memory ran short: sim/capacity.h). No timings then.
+  std::string error;
 };
 
 // The largest crowd of a leg count one simulation holds (its render buffer's bodies,

@@ -51,6 +51,7 @@ test('the reference scene is refused, not aborted, when the module cannot hold i
     assert.match(refused ?? '', /do not fit in the module's memory/);
     assert.ok(scenes.length >= 1, 'one scene of 400 quadrupeds fits');
     assert.equal(G._gl_peer_scene_step(scenes[0], 1), 0, 'the module still steps');
+    assert.equal(G._gl_peer_scene_step(scenes[0], 2 ** 31 - 1), -1, 'a step count that would not return is refused');
     for (const h of scenes) G._gl_peer_scene_destroy(h);
     assert.equal(G._gl_peer_scene_create(1, 0, 1), 0);
     assert.match(G.UTF8ToString(G._gl_last_error()), /characters: 0 is outside \[1, 400\]/);

@@ -634,7 +634,8 @@ void* gl_peer_scene_create(int kind, int characters, int threads) {
 void gl_peer_scene_destroy(void* scene) { delete static_cast<gaitlab::peers::ReferenceScene*>(scene); }
 
 int gl_peer_scene_step(void* scene, int steps) {
-  if (steps < 0) return refuse(GL_ERR_ARGUMENT, "steps: " + str(steps) + " is negative");
+  if (steps < 0 || steps > gaitlab::limits::kMaxStepsPerCall)
+    return refuse(GL_ERR_ARGUMENT, "steps: " + str(steps) + " is outside [0, " + str(gaitlab::limits::kMaxStepsPerCall) + "]");
   static_cast<gaitlab::peers::ReferenceScene*>(scene)->step(steps);
   return GL_OK;
 }

@@ -397,7 +397,7 @@ GL_EXPORT const char* gl_morphology_json(int kind);
 // threads (clamped to [1, GL_MAX_THREADS]). NULL on refusal.
 GL_EXPORT void* gl_peer_scene_create(int kind, int characters, int threads);
 GL_EXPORT void gl_peer_scene_destroy(void* scene);
-// `steps` (>= 0) fixed steps of 1/120 s. GL_OK, or GL_ERR_ARGUMENT.
+// `steps` (0 to 12000, as gl_sim_step) fixed steps of 1/120 s. GL_OK, or GL_ERR_ARGUMENT.
 GL_EXPORT int gl_peer_scene_step(void* scene, int steps);
 // Mean height of the ragdolls' root segments, m (never fails).
 GL_EXPORT double gl_peer_scene_root_height(void* scene);

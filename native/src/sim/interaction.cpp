@@ -50,14 +50,7 @@ void Simulation::setGoal(int i, const gait::Goal& goal) {
 int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& velocity,
                          double half) {
   // At the most boxes a scene takes, the oldest thrown box makes way first (when there is one).
-  if (boxRoom() < 1 && !interaction_.thrown.empty() && boxes_ >= limits::kMaxBoxes) {
-    const ThrownBox oldest = interaction_.thrown.front();
-    interaction_.thrown.pop_front();
-    render_.remove({oldest.body});
-    shards_.removeProp(oldest.body);
-    ids_.destroy(oldest.id);
-    --boxes_;
-  }
+  if (boxRoom() < 1 && !interaction_.thrown.empty() && boxes_ >= limits::kMaxBoxes) removeOldestThrown();
   if (boxRoom() < 1) return -1;
   const int id = ids_.create(-1);
   if (id < 0) return -1;
@@ -74,15 +67,17 @@ int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& vel
   render_.add(b, {{h, h, h}, 0xc08a48ffu, -1, 0});
   interaction_.thrown.push_back({b, id});
   ++boxes_;
-  if (static_cast<int>(interaction_.thrown.size()) > kMaxThrown) {
-    const ThrownBox oldest = interaction_.thrown.front();
-    interaction_.thrown.pop_front();
-    render_.remove({oldest.body});
-    shards_.removeProp(oldest.body);
-    ids_.destroy(oldest.id);
-    --boxes_;
-  }
+  if (static_cast<int>(interaction_.thrown.size()) > kMaxThrown) removeOldestThrown();
   return id;
+}
+
+void Simulation::removeOldestThrown() {
+  const ThrownBox oldest = interaction_.thrown.front();
+  interaction_.thrown.pop_front();
+  render_.remove({oldest.body});
+  shards_.removeProp(oldest.body);
+  ids_.destroy(oldest.id);
+  --boxes_;
 }
 
 bool Simulation::drag(int id, int segment, const Eigen::Vector3d& local,

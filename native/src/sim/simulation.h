@@ -204,6 +204,7 @@ class Simulation {
   void runSteps(int steps);
   void steerWanderers();  // wander.h: the wanderers' turn rates, between fixed steps
   void isolate(Agent& a);  // interaction.cpp: parks a character whose state is not finite
+  void removeOldestThrown();  // interaction.cpp: the oldest thrown box leaves the scene
 
   uint32_t seed_;
   body::Morphology biped_, quadruped_;

@@ -18,12 +18,16 @@ let cancelled = false;
 
 const yieldToMessages = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
 
-async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<void> {
-  if (!crossOriginIsolated) throw new Error('the page is not cross-origin isolated: no WASM threads');
-  module ??= await loadGaitlab(command.wasmUrl, {
+/** The module, loaded once for every run and capacity search, its aborts posted to the page. */
+const loadModule = (wasmUrl: string) =>
+  loadGaitlab(wasmUrl, {
     printErr: (text) => console.warn(`[gaitlab] ${text}`),
     onAbort: (what) => post({ type: 'error', message: `the WASM module aborted: ${String(what)}` }),
   });
+
+async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<void> {
+  if (!crossOriginIsolated) throw new Error('the page is not cross-origin isolated: no WASM threads');
+  module ??= await loadModule(command.wasmUrl);
   const m = module;
   post({ type: 'machine', machine: bench.machine(m) });
   const { inputs } = command;
@@ -72,10 +76,7 @@ async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<voi
  */
 async function capacityRun(command: Extract<BenchCommand, { type: 'capacity' }>): Promise<void> {
   if (!crossOriginIsolated) throw new Error('the page is not cross-origin isolated: no WASM threads');
-  module ??= await loadGaitlab(command.wasmUrl, {
-    printErr: (text) => console.warn(`[gaitlab] ${text}`),
-    onAbort: (what) => post({ type: 'error', message: `the WASM module aborted: ${String(what)}` }),
-  });
+  module ??= await loadModule(command.wasmUrl);
   const m = module;
   post({ type: 'machine', machine: bench.machine(m) });
   for (const legs of [2, 4] as const) {

@@ -4,6 +4,7 @@
 //
 //   node --test tests/e2e/demo-crowd.test.mjs
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
 import { openRecordedPage, PAGE_TIMEOUT, resultsDir, startBrowser } from './browser.mjs';
@@ -108,9 +109,16 @@ describe('the demo crowd', { timeout: TEST_TIMEOUT * 4 }, () => {
     await page.waitForFunction(() => window.gaitlab.characters().filter((c) => c.type === 'biped').every((c) => Math.abs(c.goal.speed - 0.7) < 1e-9), null, { timeout: PAGE_TIMEOUT });
     let goals = await characters(page);
     for (const c of goals.filter((x) => x.type === 'quadruped')) assert.equal(c.goal.speed, 0.4, `quadruped #${c.id} keeps its speed`);
-    // The slider's range is the one the type is measured to walk at.
-    const max = await page.locator('.lil-controller', { hasText: 'biped speed' }).evaluate((el) => el.querySelector('.lil-slider') ? 1.0 : null);
-    assert.equal(max, 1.0);
+    // The slider spans the goals the biped's preset walks: 0 to its fastest speed key, which the
+    // module reports; a goal beyond it is refused beside the field.
+    const top = JSON.parse(readFileSync(new URL('../../public/presets/biped.json', import.meta.url), 'utf8')).keys.at(-1).speed;
+    await speedField('biped speed').fill((top + 0.2).toFixed(2));
+    const refusal = page.locator('.lil-controller', { hasText: 'biped speed' }).locator('xpath=following-sibling::*[contains(@class, "field-message")]');
+    await refusal.waitFor({ timeout: PAGE_TIMEOUT });
+    assert.match(await refusal.innerText(), new RegExp(`outside \\[0, ${top}\\]`));
+    await speedField('biped speed').fill(String(top));
+    await speedField('biped speed').press('Enter');
+    await page.waitForFunction((t) => window.gaitlab.characters().filter((c) => c.type === 'biped').every((c) => Math.abs(c.goal.speed - t) < 1e-9), top, { timeout: PAGE_TIMEOUT });
     // Select biped #2: steering says so, and acts on it alone.
     await page.evaluate(() => window.gaitlab.select(2));
     await page.waitForFunction(() => window.gaitlab.stats().selected === 2, null, { timeout: PAGE_TIMEOUT });

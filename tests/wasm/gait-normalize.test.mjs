@@ -115,17 +115,20 @@ describe('gl_gait_normalize: the gait in a share link or an imported file', () =
   });
 
   it('refuses a schema version newer than its own, and migrates a schema-1 gait to the current schema', () => {
-    assert.match(normalize(edited((g) => (g.version = 4))).error, /^version: expected 1 to 3, got 4/);
+    assert.match(normalize(edited((g) => (g.version = 5))).error, /^version: expected 1 to 4, got 5/);
     const current = preset(KIND.biped);
     const old = edited((g) => {
       g.version = 1;
+      delete g.speed; // speed keys came with schema 4
+      delete g.keys;
       delete g.params['gains.swingTargetRate'];
       g.params['legFrame.supportGain'] = 800;
     });
     const { gait, error } = normalize(old);
     assert.equal(error, undefined);
-    assert.equal(gait.version, 3);
+    assert.equal(gait.version, 4);
     assert.deepEqual(gait.params, { ...current.params, 'gains.swingTargetRate': 0 });
+    assert.equal(gait.keys, undefined);
   });
 });
 

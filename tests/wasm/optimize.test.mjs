@@ -58,6 +58,20 @@ for (const method of ['greedy', 'cmaes']) {
   });
 }
 
+test('optimize --key tunes one speed key and keeps the others as they were', () => {
+  const out = path.join(dir, 'key.json');
+  const r = run(native, ['optimize', '--character', 'biped', '--key', '1.7', '--generations', '2', '--candidates', '3',
+    '--seconds', '1', '--speeds', '1.6', '--seed', '3', '--out', out, '--json']);
+  assert.equal(r.status, 0, r.stderr);
+  const preset = JSON.parse(readFileSync(path.join(root, 'public/presets/biped.json'), 'utf8'));
+  const file = JSON.parse(readFileSync(out, 'utf8'));
+  assert.equal(file.version, 4);
+  assert.equal(file.speed, preset.speed);
+  assert.deepEqual(file.params, preset.params, 'the primary key is not the one tuned');
+  assert.deepEqual(file.keys.map((k) => k.speed), preset.keys.map((k) => k.speed));
+  assert.deepEqual(Object.keys(file.keys[0].params), Object.keys(preset.keys[0].params));
+});
+
 test('optimize refuses bad options', () => {
   for (const [args, message] of [
     [['optimize', '--generations', '1'], /--out FILE is required/],
@@ -68,6 +82,7 @@ test('optimize refuses bad options', () => {
     [['optimize', '--grounds', 'flat,hill', '--out', '/tmp/x.json'], /--grounds: 'hill' is not flat, slope or bumps/],
     [['optimize', '--grounds', 'slope@down', '--out', '/tmp/x.json'], /--grounds: 'slope@down': the heading after '@' is not a number/],
     [['optimize', '--candidates', '1', '--out', '/tmp/x.json'], /--candidates: 1 is outside/],
+    [['optimize', '--key', '1.2', '--out', '/tmp/x.json'], /--key: the gait has no key at 1\.2 m\/s; its keys are at 1\.4, 1\.7 m\/s/],
   ]) {
     const r = run(native, args);
     assert.equal(r.status, 2, args.join(' '));

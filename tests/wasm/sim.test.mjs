@@ -178,6 +178,17 @@ describe('gaitlab WASM module in Node', () => {
     assert.match(Module.UTF8ToString(Module._gl_last_error()), /^kind: 2 /);
   });
 
+  it('gives each kind the top of its preset gait: its fastest speed key, as the preset file says', () => {
+    for (const [name, kind] of [['biped', KIND.biped], ['quadruped', KIND.quadruped]]) {
+      const preset = JSON.parse(fs.readFileSync(path.join(repoDir, `public/presets/${name}.json`), 'utf8'));
+      const speeds = [preset.speed ?? 0, ...(preset.keys ?? []).map((k) => k.speed)];
+      assert.equal(Module._gl_top_speed(kind), Math.max(...speeds), name);
+      assert.ok(Module._gl_top_speed(kind) > Module._gl_cruise_speed(kind), name);
+    }
+    assert.ok(Number.isNaN(Module._gl_top_speed(KIND.box)));
+    assert.match(Module.UTF8ToString(Module._gl_last_error()), /^kind: 2 /);
+  });
+
   it('spawns single things and refuses unknown kinds', () => {
     const sim = Module._gl_sim_create(1, 3);
     try {

@@ -18,7 +18,7 @@ import {
 import { SimClient } from './sim/sim-client';
 import { groundHeight, isTerrainKind, type TerrainKind } from './sim/terrain-grid';
 import { CHARACTER_TYPES, type CharacterType } from './gait/character';
-import { ControlPanel, MAX_TURN_DEGREES, WALKING_SPEEDS, type SteerTarget } from './ui/control-panel';
+import { ControlPanel, MAX_TURN_DEGREES, type SteerTarget } from './ui/control-panel';
 import { GaitEditors } from './ui/gait-editors';
 import { GaitTransfer } from './ui/gait-transfer';
 import { LEARNER_COLOUR, OptimizePanel } from './ui/optimize-panel';
@@ -234,7 +234,7 @@ function onKey(event: KeyboardEvent): void {
     for (const type of CHARACTER_TYPES) {
       if (target !== 'all' && target.type !== type) continue;
       const key = type === 'biped' ? 'bipedSpeed' : 'quadrupedSpeed';
-      v[key] = clamp(v[key] + dSpeed, WALKING_SPEEDS[type].min, WALKING_SPEEDS[type].max);
+      v[key] = clamp(v[key] + dSpeed, panel.speedRange(type).min, panel.speedRange(type).max);
     }
     v.turnDegrees = clamp(v.turnDegrees + dTurn, -MAX_TURN_DEGREES, MAX_TURN_DEGREES);
     steer(target, { speed: { biped: v.bipedSpeed, quadruped: v.quadrupedSpeed }, turn: (v.turnDegrees * Math.PI) / 180 });
@@ -297,6 +297,7 @@ if (!window.crossOriginIsolated) {
     onScene: (reader, info) => {
       crowd.attach(reader);
       state.threads = info.threads;
+      panel.setSpeedRanges(info.speedRanges);
       state.lastStats = performance.now(); // the stall watchdog counts from here
       realtimeMeter.reset();
       framed = false;

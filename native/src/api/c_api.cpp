@@ -213,6 +213,12 @@ int gl_sim_spawn(void* s, int kind, double x, double z, double heading) {
   return id;
 }
 
+double gl_top_speed(int kind) {
+  Character c;
+  if (!characterKind(kind, &c)) return refuse(kNaN, notACharacter(kind));
+  return gaitlab::gait::defaultGait(c).keys.back().speed;
+}
+
 double gl_cruise_speed(int kind) {
   if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(kNaN, notACharacter(kind));
   return Simulation::cruiseSpeed(static_cast<Character>(kind));
@@ -283,7 +289,8 @@ int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
   GaitFile file;
   if (const auto error = parseGaitFile(text ? text : "", c, &file))
     return refuse(GL_ERR_INVALID_PARAMS, error->describe());
-  for (int i : targets) simulation.controller(i).setParams(file.params);
+  const Gait gait = file.gait();
+  for (int i : targets) simulation.controller(i).setGait(gait);
   return GL_OK;
 }
 
@@ -302,14 +309,17 @@ int gl_sim_patch_params(void* s, int characterId, int kind, const char* patch) {
   Simulation& simulation = *sim(s);
   // The values are checked once, against the schema, before any character changes: the patch
   // is applied to a scratch copy first, then to each character's own parameters.
-  GaitParams scratch = defaultParams(c);
+  // A patch edits each character's primary key (its gait file's "params") and, when it names
+  // them, that key's speed and the other speed keys (gait/params_io.h, applyGaitPatch).
   const std::string text = patch ? patch : "";
-  if (const auto error = applyParamsPatch(c, text, &scratch)) return refuse(GL_ERR_INVALID_PARAMS, error->describe());
+  Gait scratch = defaultGait(c);  // checked once even when no character is targeted
+  if (const auto error = applyGaitPatch(c, text, &scratch)) return refuse(GL_ERR_INVALID_PARAMS, error->describe());
+  std::vector<Gait> patched;
   for (int i : targets) {
-    GaitParams params = simulation.controller(i).params();
-    applyParamsPatch(c, text, &params);
-    simulation.controller(i).setParams(params);
+    patched.push_back(simulation.controller(i).gait());
+    if (const auto error = applyGaitPatch(c, text, &patched.back())) return refuse(GL_ERR_INVALID_PARAMS, error->describe());
   }
+  for (size_t t = 0; t < targets.size(); ++t) simulation.controller(targets[t]).setGait(patched[t]);
   return GL_OK;
 }
 
@@ -318,7 +328,7 @@ const char* gl_sim_get_params(void* s, int characterId) {
   const Simulation& simulation = *sim(s);
   const int i = simulation.characterIndex(characterId);
   if (i < 0) return refuse<const char*>(nullptr, noCharacter(characterId));
-  handle(s)->text = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).params());
+  handle(s)->text = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).gait());
   return handle(s)->text.c_str();
 }
 
@@ -492,6 +502,9 @@ void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, cons
     if (const auto error = gait::parseGaitFile(startJson, c, &start))
       return refuse<void*>(nullptr, "start: " + error->describe());
   }
+  // The search tunes the start's primary key ("params"); its other speed keys walk with it.
+  o.gait = startJson ? start.gait() : gait::defaultGait(c);
+  o.key = o.gait.primary;
   if (objectiveJson) {
     if (const auto error = gait::checkJsonText(objectiveJson))
       return refuse<void*>(nullptr, "objective settings: " + error->describe());
@@ -501,7 +514,7 @@ void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, cons
     if (!error.empty()) return refuse<void*>(nullptr, error);
   }
   if (!takeWorkers(o.threads)) return refuse<void*>(nullptr, noWorkers(o.threads));
-  return new OptHandle{optimize::Optimizer::create(o, start.params), c, {}};
+  return new OptHandle{optimize::Optimizer::create(o, o.gait.primaryParams()), c, {}};
 }
 
 const char* gl_opt_settings_json(void) {
@@ -534,7 +547,9 @@ const char* gl_opt_best_json(void* h) {
       {"objective_terms", {{"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"ft", t.ft}, {"fall", t.fall}}},
       {"generations", o.generation()},
       {"evaluations", o.evaluations()}};
-  opt(h)->text = gait::gaitFileJson(opt(h)->character, o.best(), o.generation() ? meta : nlohmann::json::object());
+  gait::Gait best = o.options().gait;
+  best.keys[o.options().key].params = o.best();
+  opt(h)->text = gait::gaitFileJson(opt(h)->character, best, o.generation() ? meta : nlohmann::json::object());
   return opt(h)->text.c_str();
 }
 

@@ -110,6 +110,11 @@ GL_EXPORT int gl_sim_room(void* sim, int kind);
 // cruiseSpeed): the demo's start goal. NaN for a kind that is not a character.
 GL_EXPORT double gl_cruise_speed(int kind);
 
+// The fastest speed a character of `kind`'s preset gait is tuned for, m/s: its fastest speed key
+// (native/src/gait/speed_keys.h). The demo's steering offers goals from 0 up to it. NaN for a kind
+// that is not a character.
+GL_EXPORT double gl_top_speed(int kind);
+
 // The demo page's scene layout (native/src/sim/scene_layout.h): a grid facing +z, 2.5 m across
 // and 3 m deep, centred on the origin. The first call sizes the grid for its `count`; later calls
 // continue in the next free places, in rows behind the first (−z). `kind` is GL_KIND_BIPED,
@@ -182,7 +187,9 @@ GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char
 // An edit: `patch` is a JSON object {"<name>": number | [4 numbers], ...} of some parameters and
 // their new values, given to the character with id `characterId`, or with characterId = -1 to
 // every character of `kind` (each keeps its other parameters). Every value is checked against
-// the schema first, and nothing changes unless all are valid. Returns GL_OK or a negative error
+// the schema first, and nothing changes unless all are valid. The patch edits the primary speed
+// key (the gait file's "params"); it may also hold "speed" and "keys" as in a gait file, which set
+// that key's speed and replace the other speed keys. Returns GL_OK or a negative error
 // code (GL_ERR_INVALID_PARAMS with gl_last_error() "NAME: WHAT" for a refused value).
 GL_EXPORT int gl_sim_patch_params(void* sim, int characterId, int kind, const char* patch);
 

@@ -71,6 +71,8 @@ const char* kOptimizeUsage =
     "\n"
     "  --character biped|quadruped   (default biped, or the --params file's character)\n"
     "  --params FILE                 start from this gait file (default: the preset)\n"
+    "  --key M_S                     of a gait with speed keys, tune the key at this speed\n"
+    "                                (default: the file's \"params\"); episodes walk with every key\n"
     "  --method greedy|cmaes         greedy stochastic search of §3.3 (default) or CMA-ES\n"
     "  --generations N               1 to 1000000 (default 20)\n"
     "  --candidates K                evaluations per generation, 2 to 1000 (default 10)\n"
@@ -154,10 +156,12 @@ int walk(int argc, char** argv) {
   std::optional<gait::Character> chosen;
   if (!characterOption(o, &chosen)) return api::usageError("walk", o.error);
   gait::GaitFile file;
+  gait::Gait gait;
   if (o.values.count("--params")) {
     if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
     chosen = file.character;
-    w.params = &file.params;
+    gait = file.gait();
+    w.gait = &gait;
   }
   const gait::Character c = chosen.value_or(gait::Character::Biped);
   const std::string character = gait::characterName(c);
@@ -316,7 +320,7 @@ json termsJson(const optimize::ObjectiveTerms& t) {
 int optimizeCommand(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
-             "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective"},
+             "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective", "--key"},
             {"--json"});
   if (o.help) return printHelp(kOptimizeUsage);
   if (!o.error.empty()) return api::usageError("optimize", o.error);
@@ -334,7 +338,20 @@ int optimizeCommand(int argc, char** argv) {
   }
   optimize::SearchOptions search;
   search.character = chosen.value_or(gait::Character::Biped);
-  if (!o.values.count("--params")) start.params = gait::defaultParams(search.character);
+  search.gait = o.values.count("--params") ? start.gait() : gait::defaultGait(search.character);
+  search.key = search.gait.primary;
+  if (o.values.count("--key")) {
+    double speed = 0;
+    if (!o.number("--key", 0, 5, 0.0, &speed)) return api::usageError("optimize", o.error);
+    search.key = search.gait.keyAt(speed);
+    if (search.key < 0) {
+      std::string speeds;
+      for (const gait::SpeedKey& k : search.gait.keys) speeds += (speeds.empty() ? "" : ", ") + json(k.speed).dump();
+      return api::usageError("optimize", "--key: the gait has no key at " + json(speed).dump() +
+                                             " m/s; its keys are at " + speeds + " m/s");
+    }
+  }
+  const gait::GaitParams tuned = search.gait.keys[search.key].params;
 
   const std::string method = o.values.count("--method") ? o.values["--method"] : "greedy";
   if (!optimize::parseMethod(method, &search.method))
@@ -374,11 +391,11 @@ int optimizeCommand(int argc, char** argv) {
 
   g_interrupted = 0;
   const auto previous = std::signal(SIGINT, onInterrupt);
-  auto optimizer = optimize::Optimizer::create(search, start.params);
+  auto optimizer = optimize::Optimizer::create(search, tuned);
   const int total = static_cast<int>(generations);
   json history = json::array();
   // The start's own score, for comparison (one evaluation outside the search's budget).
-  const double startObjective = optimizer->score(start.params).total;
+  const double startObjective = optimizer->score(tuned).total;
   double elapsed = 0;
   for (int g = 0; g < total && !g_interrupted; ++g) {
     const optimize::Generation gen = optimizer->step();
@@ -408,7 +425,9 @@ int optimizeCommand(int argc, char** argv) {
                {"date", utcNow()}};
   // Ctrl-C stays caught until the file is in place: a second one while it is written changes
   // nothing (the write is short), rather than leaving the temporary file behind.
-  const bool committed = output.commit(gait::gaitFileJson(search.character, optimizer->best(), meta));
+  gait::Gait best = search.gait;
+  best.keys[search.key].params = optimizer->best();
+  const bool committed = output.commit(gait::gaitFileJson(search.character, best, meta));
   std::signal(SIGINT, previous);
   if (!committed) {
     std::fprintf(stderr,

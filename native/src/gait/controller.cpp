@@ -58,7 +58,7 @@ double twistAngle(const Quaterniond& rel, const Vector3d& axis) {
 
 Controller::Controller(const body::Morphology& morphology, const GaitParams& params,
                        double heading)
-    : m_(morphology), params_(params), desiredHeading_(heading) {
+    : m_(morphology), character_(characterOf(morphology)), desiredHeading_(heading) {
   for (const body::Leg& leg : m_.legs) {
     const body::Segment& upper = m_.segments[leg.upper];
     const body::Segment& lower = m_.segments[leg.lower];
@@ -80,9 +80,18 @@ Controller::Controller(const body::Morphology& morphology, const GaitParams& par
   setParams(params);
 }
 
-void Controller::setParams(const GaitParams& params) {
+void Controller::setParams(const GaitParams& params) { setGait(Gait::single(params)); }
+
+void Controller::setGait(const Gait& gait) {
+  gait_ = gait;
+  blendAt(std::abs(desiredVelocity_.z()));
+}
+
+void Controller::blendAt(double speed) {
   const bool first = player_.legCount() == 0;
-  params_ = params;
+  paramsAtSpeed(character_, gait_, speed, &params_);
+  blendedAt_ = speed;
+  const GaitParams& params = params_;
   LegSchedule schedule[kMaxLegs];
   for (size_t i = 0; i < m_.legs.size(); ++i) {
     schedule[i].stepTrigger = params.legs[i].stepTrigger;
@@ -124,6 +133,9 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   velocityH.y() = 0;
   desiredVelocity_ = rampDesiredVelocity(desiredVelocity_, Vector3d(0, 0, goal_.speed),
                                          params_.maxAcceleration, dt);
+  // Speed keys (gait/speed_keys.h): the parameters follow the desired speed as it ramps. With one
+  // key there is nothing to blend.
+  if (gait_.keys.size() > 1 && std::abs(desiredVelocity_.z()) != blendedAt_) blendAt(std::abs(desiredVelocity_.z()));
   // Speed tracking (speedIntegralGain, beyond the thesis): F_v = K_v (v_d − v) alone leaves a
   // speed error that depends on the speed (the biped walked 0.92 m/s at 1.0 and 1.53 at 1.4,
   // controller-notes §14). The velocity F_v aims at is v_d plus the integral of that error. Below

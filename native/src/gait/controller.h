@@ -9,6 +9,7 @@
 #include "body/morphology.h"
 #include "gait/gait_player.h"
 #include "gait/params.h"
+#include "gait/speed_keys.h"
 #include "gait/virtual_force.h"
 
 namespace gaitlab::gait {
@@ -43,8 +44,13 @@ class Controller {
  public:
   Controller(const body::Morphology& morphology, const GaitParams& params, double heading);
 
+  // The parameters in effect this step: the gait's keys blended at the desired speed.
   const GaitParams& params() const { return params_; }
+  // A gait of one key: these parameters at every speed.
   void setParams(const GaitParams& params);
+  // The gait: its keys by speed (gait/speed_keys.h), blended at the desired speed from now on.
+  const Gait& gait() const { return gait_; }
+  void setGait(const Gait& gait);
   void setGoal(const Goal& goal) { goal_ = goal; }
   const Goal& goal() const { return goal_; }
 
@@ -94,8 +100,14 @@ class Controller {
   // Swing-hip twist scaling and the torque limit, last in every update.
   void finishTorques(const CharacterState& s, Eigen::Vector3d* torques) const;
 
+  // params_ from the gait's keys at |v_d|, and the gait player's period and schedule from them.
+  void blendAt(double speed);
+
   const body::Morphology& m_;
+  Character character_;
+  Gait gait_;
   GaitParams params_;
+  double blendedAt_ = 0;  // the |v_d| params_ was blended at (m/s)
   Goal goal_;
   GaitPlayer player_;
   std::vector<LegGeometry> geometry_;

@@ -6,9 +6,13 @@
 #include "body/morphology.h"
 #include "gait/params.h"
 #include "gait/schema.h"
+#include "gait/speed_keys.h"
 
 namespace gaitlab::gait {
 
+// The preset's gait: all its speed keys (gait/speed_keys.h).
+const Gait& defaultGait(Character c);
+// The preset's primary parameter set ("params" of the file).
 GaitParams defaultParams(Character c);
 GaitParams defaultParams(const body::Morphology& morphology);
 

@@ -1,5 +1,6 @@
 #include "gait/params_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -152,6 +153,87 @@ void migrateParams(int version, json* params) {
       (*params)[std::string(frame) + ".captureSideways"] = 0.05;
     }
   }
+  // 4: speed keys ("speed" and "keys" beside "params", gait/speed_keys.h); the parameters are
+  // unchanged, and a file without keys walks as before.
+}
+
+// A key's speed: a finite number of m/s within the goal speeds a character may be given.
+std::optional<ParamsError> readSpeed(const json& v, const std::string& field, double* out) {
+  if (!v.is_number()) return ParamsError{field, "expected a number of m/s, got " + typeName(v)};
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || x < 0 || x > limits::kMaxGoalSpeed)
+    return ParamsError{field, num(x) + " is outside [0, " + num(limits::kMaxGoalSpeed) + "] m/s"};
+  *out = x;
+  return std::nullopt;
+}
+
+// One complete parameter set ("params" of a file or of one of its keys): every schema field of
+// the character, migrated from `version`, nothing else. `prefix` goes before the field names in
+// messages ("keys[0].params."). Fills *params only where the schema visits; returns the first
+// problem.
+std::optional<ParamsError> readParams(Character c, const json& given, int version, const std::string& prefix,
+                                      GaitParams* params) {
+  const std::string self = prefix.empty() ? "params" : prefix.substr(0, prefix.size() - 1);
+  if (!given.is_object()) return ParamsError{self, "expected an object, got " + typeName(given)};
+  json pj = given;
+  migrateParams(version, &pj);
+  GaitParams copy = *params;
+  std::optional<ParamsError> error;
+  std::set<std::string> known;
+  forEachParam(c, copy, [&](const ParamField& f) {
+    known.insert(f.spec.name);
+    if (error) return;
+    const auto it = pj.find(f.spec.name);
+    if (it == pj.end()) {
+      error = ParamsError{prefix + f.spec.name, "missing"};
+      return;
+    }
+    error = readValue(*it, f.spec, f.values);
+    if (error) error->field = prefix + error->field;
+  });
+  if (error) return error;
+  for (const auto& item : pj.items()) {
+    if (!known.count(item.key()))
+      return ParamsError{prefix + item.key(), std::string("unknown parameter for a ") + characterName(c)};
+  }
+  *params = copy;
+  return std::nullopt;
+}
+
+// "keys" of a file or a patch: at most kMaxSpeedKeys - 1 complete parameter sets, each at its own
+// speed, none at `primarySpeed`; sorted by speed into *keys. A key's fields not visited by the
+// schema start from `base`.
+std::optional<ParamsError> readKeys(Character c, const json& kj, int version, const GaitParams& base,
+                                    double primarySpeed, std::vector<SpeedKey>* keys) {
+  if (!kj.is_array()) return ParamsError{"keys", "expected an array, got " + typeName(kj)};
+  if (static_cast<int>(kj.size()) > kMaxSpeedKeys - 1)
+    return ParamsError{"keys", "at most " + std::to_string(kMaxSpeedKeys - 1) + " keys besides \"params\", got " +
+                                   std::to_string(kj.size())};
+  std::vector<SpeedKey> read;
+  std::vector<double> speeds = {primarySpeed};
+  for (size_t i = 0; i < kj.size(); ++i) {
+    const std::string where = "keys[" + std::to_string(i) + "]";
+    const json& key = kj[i];
+    if (!key.is_object()) return ParamsError{where, "expected an object, got " + typeName(key)};
+    for (const auto& item : key.items()) {
+      if (item.key() != "speed" && item.key() != "params") return ParamsError{where + "." + item.key(), "unknown field"};
+    }
+    SpeedKey k;
+    k.params = base;
+    if (!key.contains("speed")) return ParamsError{where + ".speed", "missing"};
+    if (auto error = readSpeed(key["speed"], where + ".speed", &k.speed)) return error;
+    for (double other : speeds) {
+      if (std::abs(other - k.speed) <= 1e-9)
+        return ParamsError{where + ".speed", "another key is already tuned at " + num(k.speed) + " m/s"};
+    }
+    speeds.push_back(k.speed);
+    if (!key.contains("params")) return ParamsError{where + ".params", "missing"};
+    if (auto error = readParams(c, key["params"], version, where + ".params.", &k.params)) return error;
+    read.push_back(k);
+  }
+  std::sort(read.begin(), read.end(), [](const SpeedKey& a, const SpeedKey& b) { return a.speed < b.speed; });
+  *keys = std::move(read);
+  return std::nullopt;
 }
 
 }  // namespace
@@ -171,7 +253,8 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   json doc;
   if (auto error = parseJson(text, &doc)) return error;
   if (!doc.is_object()) return ParamsError{"", "expected a JSON object, got " + typeName(doc)};
-  static const std::set<std::string> kTopLevel = {"format", "version", "character", "params", "meta"};
+  static const std::set<std::string> kTopLevel = {"format", "version", "character", "speed",
+                                                  "params", "keys", "meta"};
   for (const auto& item : doc.items()) {
     if (!kTopLevel.count(item.key())) return ParamsError{item.key(), "unknown field"};
   }
@@ -198,41 +281,42 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
                                         ", not a " + characterName(*expected)};
   if (doc.contains("meta") && !doc["meta"].is_object())
     return ParamsError{"meta", "expected an object, got " + typeName(doc["meta"])};
-  if (!doc.contains("params")) return ParamsError{"params", "missing"};
-  if (!doc["params"].is_object()) return ParamsError{"params", "expected an object, got " + typeName(doc["params"])};
-  json pj = doc["params"];
-  migrateParams(version, &pj);
+  for (const char* key : {"speed", "keys"}) {
+    if (doc.contains(key) && version < 4)
+      return ParamsError{key, "speed keys need a file of version 4 or later, this one is version " +
+                                  std::to_string(version)};
+  }
 
   // Parse into a copy of the target: a refused file leaves *out as it was.
   GaitFile file;
   file.character = *character;
   file.params = out->params;
-  std::optional<ParamsError> error;
-  std::set<std::string> known;
-  forEachParam(*character, file.params, [&](const ParamField& f) {
-    known.insert(f.spec.name);
-    if (error) return;
-    const auto it = pj.find(f.spec.name);
-    if (it == pj.end()) {
-      error = ParamsError{f.spec.name, "missing"};
-      return;
-    }
-    error = readValue(*it, f.spec, f.values);
-  });
-  if (error) return error;
-  for (const auto& item : pj.items()) {
-    if (!known.count(item.key()))
-      return ParamsError{item.key(), std::string("unknown parameter for a ") + characterName(*character)};
+  if (doc.contains("speed")) {
+    if (auto error = readSpeed(doc["speed"], "speed", &file.speed)) return error;
+  }
+  if (!doc.contains("params")) return ParamsError{"params", "missing"};
+  if (auto error = readParams(*character, doc["params"], version, "", &file.params)) return error;
+  if (doc.contains("keys")) {
+    if (auto error = readKeys(*character, doc["keys"], version, file.params, file.speed, &file.keys)) return error;
   }
   if (doc.contains("meta")) file.meta = doc["meta"];
   *out = std::move(file);
   return std::nullopt;
 }
 
+Gait GaitFile::gait() const {
+  Gait g;
+  g.keys = keys;
+  g.keys.push_back({speed, params});
+  std::sort(g.keys.begin(), g.keys.end(), [](const SpeedKey& a, const SpeedKey& b) { return a.speed < b.speed; });
+  g.primary = g.keyAt(speed);
+  return g;
+}
+
 std::optional<ParamsError> normalizeGaitFile(const std::string& text, std::string* out) {
   GaitFile file;
   if (auto error = parseGaitFile(text, std::nullopt, &file)) return error;
-  *out = gaitFileJson(file.character, file.params, file.meta, -1);
+  *out = gaitFileJson(file.character, file.gait(), file.meta, -1);
   return std::nullopt;
 }
 
@@ -258,6 +342,37 @@ std::optional<ParamsError> applyParamsPatch(Character c, const std::string& text
   return std::nullopt;
 }
 
+std::optional<ParamsError> applyGaitPatch(Character c, const std::string& text, Gait* gait) {
+  json patch;
+  if (auto error = parseJson(text, &patch)) return error;
+  if (!patch.is_object())
+    return ParamsError{"", "expected a JSON object of parameter values, got " + typeName(patch)};
+  GaitFile file;  // the gait as a file: its primary key, the others; rebuilt into *gait at the end
+  file.character = c;
+  file.speed = gait->keys[gait->primary].speed;
+  file.params = gait->primaryParams();
+  for (size_t i = 0; i < gait->keys.size(); ++i)
+    if (static_cast<int>(i) != gait->primary) file.keys.push_back(gait->keys[i]);
+  json params = json::object();
+  for (const auto& item : patch.items()) {
+    if (item.key() != "speed" && item.key() != "keys") params[item.key()] = item.value();
+  }
+  if (patch.contains("speed")) {
+    if (auto error = readSpeed(patch["speed"], "speed", &file.speed)) return error;
+  }
+  if (auto error = applyParamsPatch(c, params.dump(), &file.params)) return error;
+  if (patch.contains("keys")) {
+    if (auto error = readKeys(c, patch["keys"], kGaitFormatVersion, file.params, file.speed, &file.keys)) return error;
+  } else {
+    for (size_t i = 0; i < file.keys.size(); ++i) {
+      if (std::abs(file.keys[i].speed - file.speed) <= 1e-9)
+        return ParamsError{"speed", "another key is already tuned at " + num(file.speed) + " m/s"};
+    }
+  }
+  *gait = file.gait();
+  return std::nullopt;
+}
+
 std::optional<ParamsError> loadGaitFile(const std::string& path, std::optional<Character> expected,
                                         GaitFile* out) {
   std::ifstream in(path, std::ios::binary);
@@ -274,8 +389,11 @@ std::optional<ParamsError> loadGaitFile(const std::string& path, std::optional<C
   return parseGaitFile(text, expected, out);
 }
 
-std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::json& meta, int indent) {
-  using ordered = nlohmann::ordered_json;
+namespace {
+
+using ordered = nlohmann::ordered_json;
+
+ordered paramsObject(Character c, const GaitParams& params) {
   ordered p = ordered::object();
   GaitParams copy = params;
   forEachParam(c, copy, [&](const ParamField& f) {
@@ -285,8 +403,30 @@ std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::
       p[f.spec.name] = std::vector<double>(f.values, f.values + f.spec.knots);
     }
   });
-  ordered doc = {{"format", kGaitFormat}, {"version", kGaitFormatVersion},
-                 {"character", characterName(c)}, {"params", p}};
+  return p;
+}
+
+}  // namespace
+
+std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::json& meta, int indent) {
+  return gaitFileJson(c, Gait::single(params), meta, indent);
+}
+
+std::string gaitFileJson(Character c, const Gait& gait, const nlohmann::json& meta, int indent) {
+  const SpeedKey& primary = gait.keys[gait.primary];
+  ordered doc = {{"format", kGaitFormat}, {"version", kGaitFormatVersion}, {"character", characterName(c)}};
+  // A gait of one key tuned at 0 (any file before speed keys) is written as before them.
+  const bool keyed = gait.keys.size() > 1 || primary.speed != 0;
+  if (keyed) doc["speed"] = primary.speed;
+  doc["params"] = paramsObject(c, primary.params);
+  if (keyed) {
+    ordered keys = ordered::array();
+    for (size_t i = 0; i < gait.keys.size(); ++i) {
+      if (static_cast<int>(i) == gait.primary) continue;
+      keys.push_back(ordered{{"speed", gait.keys[i].speed}, {"params", paramsObject(c, gait.keys[i].params)}});
+    }
+    doc["keys"] = keys;
+  }
   // Strings of "meta" may come from outside (a command line in another encoding): any byte that is
   // not UTF-8 is written as U+FFFD rather than stopping the program (dump() aborts on it
   // otherwise, exceptions being compiled out).
@@ -297,23 +437,34 @@ std::string gaitFileJson(Character c, const GaitParams& params, const nlohmann::
   // knots together on its line. Every value is still written by nlohmann (shortest text that
   // reads back to the same double).
   const std::string pad(indent, ' ');
+  const auto paramLines = [&](const ordered& params, const std::string& at) {
+    std::string text = "{\n";
+    bool first = true;
+    for (const auto& param : params.items()) {
+      text += (first ? "" : ",\n") + at + pad + ordered(param.key()).dump() + ": " + param.value().dump();
+      first = false;
+    }
+    return text + "\n" + at + "}";
+  };
   std::string out = "{\n";
   bool firstKey = true;
   for (const auto& item : doc.items()) {
     out += (firstKey ? "" : ",\n") + pad + ordered(item.key()).dump() + ": ";
     firstKey = false;
-    if (item.key() != "params") {
+    if (item.key() == "params") {
+      out += paramLines(item.value(), pad);
+    } else if (item.key() == "keys") {
+      out += "[";
+      bool firstEntry = true;
+      for (const auto& key : item.value()) {
+        out += std::string(firstEntry ? "\n" : ",\n") + pad + pad + "{\"speed\": " + key["speed"].dump() +
+               ", \"params\": " + paramLines(key["params"], pad + pad) + "}";
+        firstEntry = false;
+      }
+      out += item.value().empty() ? "]" : "\n" + pad + "]";
+    } else {
       out += item.value().dump(-1, ' ', false, kReplace);
-      continue;
     }
-    out += "{\n";
-    bool firstParam = true;
-    for (const auto& param : item.value().items()) {
-      out += (firstParam ? "" : ",\n") + pad + pad + ordered(param.key()).dump() + ": " +
-             param.value().dump();
-      firstParam = false;
-    }
-    out += "\n" + pad + "}";
   }
   return out + "\n}\n";
 }

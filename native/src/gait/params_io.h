@@ -1,9 +1,15 @@
 // Gait files: a character's GaitParams as JSON, the one format used by the CLI (`--params`),
 // the web page (export, import, share links), the optimiser's output and the shipped presets:
 //
-//   {"format": "gaitlab-gait", "version": 2, "character": "biped" | "quadruped",
+//   {"format": "gaitlab-gait", "version": 4, "character": "biped" | "quadruped",
+//    "speed": m/s,                                          (optional, default 0)
 //    "params": {"<schema name>": number | [4 numbers], ...},
+//    "keys": [{"speed": m/s, "params": {...}}, ...],        (optional, default none)
 //    "meta": {...optional: source, command, seed, objective, date, ...}}
+//
+// "params" is the gait's key parameter set tuned at "speed"; "keys" are more key sets tuned at
+// other speeds, every one complete. The parameters in effect are blended by the desired speed
+// (gait/speed_keys.h); a file without "keys" walks with "params" at every speed.
 //
 // Every schema field must be present, and nothing else; values finite and within the schema's
 // bounds. A file that breaks any rule is refused with the field named, and the target is left
@@ -17,6 +23,7 @@
 
 #include "gait/params.h"
 #include "gait/schema.h"
+#include "gait/speed_keys.h"
 
 namespace gaitlab::gait {
 
@@ -35,8 +42,13 @@ struct ParamsError {
 
 struct GaitFile {
   Character character = Character::Biped;
-  GaitParams params;
+  double speed = 0;       // m/s, the speed `params` is tuned for
+  GaitParams params;      // "params": the primary key
+  std::vector<SpeedKey> keys;  // "keys": the others, by increasing speed
   nlohmann::json meta = nlohmann::json::object();
+
+  // All keys in speed order, `params` among them as the primary.
+  Gait gait() const;
 };
 
 // Whether `text` is JSON within the limits of api/limits.h (bytes, nesting depth, string and
@@ -64,9 +76,18 @@ std::optional<ParamsError> normalizeGaitFile(const std::string& text, std::strin
 // of knots). All or nothing: on success sets them in *params; on failure returns the first
 // problem, naming the parameter, and leaves *params as it was.
 std::optional<ParamsError> applyParamsPatch(Character c, const std::string& patch, GaitParams* params);
+// The same for a whole gait: parameter names edit its primary key, "speed" (m/s) the speed that
+// key is tuned at, and "keys" ([{"speed", "params"}, ...], as in a gait file) replaces its other
+// keys. All or nothing, as above. A patch of every parameter with "speed" and "keys" sets the gait
+// exactly (the page's undo, redo and imports).
+std::optional<ParamsError> applyGaitPatch(Character c, const std::string& patch, Gait* gait);
 
 // Serialises params in schema order; doubles print with enough digits to read back bit-exactly.
 std::string gaitFileJson(Character c, const GaitParams& params,
+                         const nlohmann::json& meta = nlohmann::json::object(), int indent = 2);
+// The same for a gait of several keys: its primary key as "speed" and "params", the others as
+// "keys" (with one key, exactly the file above).
+std::string gaitFileJson(Character c, const Gait& gait,
                          const nlohmann::json& meta = nlohmann::json::object(), int indent = 2);
 
 }  // namespace gaitlab::gait

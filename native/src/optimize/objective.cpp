@@ -142,14 +142,14 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft) 
   return t;
 }
 
-ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
+ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
                           const Ground& ground) {
   sim::WalkOptions w;
   w.terrain = ground.terrain;
   w.heading = ground.heading;
   w.character = c;
-  w.params = &params;
+  w.gait = &gait;
   w.speed = speed;
   w.turnRate = settings.turnRate;
   w.seconds = settings.seconds;
@@ -190,14 +190,14 @@ double timingDeviation(const std::vector<double>& measured, const std::vector<do
   return sum / static_cast<double>(legs);
 }
 
-ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
+ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
                         const ObjectiveSettings& settings, uint32_t seed) {
   ObjectiveTerms mean;
   int episodes = 0;
   for (const Ground& ground : settings.grounds) {
     for (double speed : settings.speeds) {
       for (int start = 0; start < settings.starts; ++start) {
-        const ObjectiveTerms t = runEpisode(c, params, settings, speed, start, seed, ground);
+        const ObjectiveTerms t = runEpisode(c, gait, settings, speed, start, seed, ground);
         mean.fd += t.fd;
         mean.fv += t.fv;
         mean.fa += t.fa;

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "gait/schema.h"
+#include "gait/speed_keys.h"
 #include "physics/terrain.h"
 
 namespace gaitlab::optimize {
@@ -145,13 +146,13 @@ double timingDeviation(const std::vector<double>& measured, const std::vector<do
 // One episode: the character walks with `params` on `ground` from start state `start` at goal
 // `speed` (sim::runWalk with the recorder observing every step). `seed` fixes the start nudge's
 // direction, the pushes' phases and the bumps.
-ObjectiveTerms runEpisode(gait::Character c, const gait::GaitParams& params,
+ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
                           const Ground& ground = Ground{});
 
 // The objective of a parameter set: the mean over every ground × speed × start state. Deterministic:
 // the same inputs give the same bits (each episode is its own single-threaded simulation).
-ObjectiveTerms evaluate(gait::Character c, const gait::GaitParams& params,
+ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
                         const ObjectiveSettings& settings, uint32_t seed);
 
 }  // namespace gaitlab::optimize

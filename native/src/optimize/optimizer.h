@@ -48,6 +48,11 @@ struct SearchOptions {
   double stepScale = 0.1;
   // CMA-ES initial step size, as a share of each coordinate's range.
   double cmaSigma = 0.1;
+  // A gait of several speed keys (gait/speed_keys.h): the search tunes key `key` and every episode
+  // walks with the whole gait, its other keys as they are. Empty: the tuned parameters are the
+  // whole gait.
+  gait::Gait gait;
+  int key = 0;
 };
 
 // §3.3's perturbation of a flat parameter vector: each coordinate independently, with

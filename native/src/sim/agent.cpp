@@ -7,13 +7,14 @@ namespace gaitlab::sim {
 Agent::Agent(physics::World& w, const body::Morphology& m, const Eigen::Vector3d& origin,
              double heading)
     : body(std::make_unique<physics::Character>(w, m, origin, heading)),
-      controller(m, gait::defaultParams(m), heading),
+      controller(m, gait::defaultParams(m), heading),  // then the preset's whole gait, below
       state(m.segments.size()),
       torques(m.segments.size(), Eigen::Vector3d::Zero()),
       world(&w) {
   for (size_t l = 0; l < m.legs.size(); ++l) body->setFootContactFlag(static_cast<int>(l), &footContact[l]);
   lastGood = body->segmentState(m.legFrames[0]).position;
   lastGoodHeading = heading;
+  controller.setGait(gait::defaultGait(gait::characterOf(m)));
 }
 
 void Agent::control() {

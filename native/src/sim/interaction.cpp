@@ -122,7 +122,7 @@ bool Simulation::resetCharacter(int id) {
   fresh->id = id;
   fresh->kind = old.kind;
   fresh->shard = old.shard;
-  fresh->controller.setParams(old.controller.params());
+  fresh->controller.setGait(old.controller.gait());
   fresh->controller.setGoal(old.controller.goal());
   shards_.replaceAgent(&old, fresh.get());
   // Same morphology, same number of bodies in the same order: the render entries keep their

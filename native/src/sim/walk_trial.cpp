@@ -61,7 +61,7 @@ WalkResult runWalk(const WalkOptions& o) {
   Simulation sim(1, o.seed);
   if (o.terrain != physics::TerrainKind::Flat) sim.setTerrain(o.terrain);
   sim.spawn(o.character, 0, 0, o.heading);
-  if (o.params) sim.controller(0).setParams(*o.params);
+  if (o.gait) sim.controller(0).setGait(*o.gait);
   sim.setGoal(0, {goalSpeedAt(o, 0.0), o.turnRate});
   const body::Morphology& m = sim.character(0).morphology();
   const int root = m.legFrames[0];

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gait/params.h"
+#include "gait/speed_keys.h"
 #include "sim/simulation.h"
 
 namespace gaitlab::sim {
@@ -18,7 +19,7 @@ enum class PushDirection { Lateral, Forward, Backward };
 
 struct WalkOptions {
   Character character = Character::Biped;
-  const gait::GaitParams* params = nullptr;  // nullptr: the character's defaults
+  const gait::Gait* gait = nullptr;  // nullptr: the character's preset
   double speed = 1.0;      // goal speed, m/s
   double turnRate = 0.0;   // goal turn rate, rad/s
   double seconds = 20.0;   // simulated

@@ -33,6 +33,8 @@ struct Scene {
 TEST(GaitCApi, NormalizeGivesTheCurrentVersionOrTheFieldItRefuses) {
   json old = parse(gl_preset_json(GL_KIND_BIPED));
   old["version"] = 1;
+  old.erase("speed");  // schema 4's speed keys
+  old.erase("keys");
   old["params"].erase("gains.swingTargetRate");
   old["params"]["legFrame.supportGain"] = 900;
   const char* out = gl_gait_normalize(old.dump().c_str());
@@ -44,7 +46,7 @@ TEST(GaitCApi, NormalizeGivesTheCurrentVersionOrTheFieldItRefuses) {
 
   const std::pair<std::string, std::string> refusals[] = {
       {"{\"format\": ", "not valid JSON"},
-      {R"({"format":"gaitlab-gait","version":4,"character":"biped","params":{}})", "version: expected 1 to 3, got 4"},
+      {R"({"format":"gaitlab-gait","version":5,"character":"biped","params":{}})", "version: expected 1 to 4, got 5"},
       {R"({"format":"gaitlab-gait","version":2,"character":"octopus","params":{}})", "character: expected \"biped\" or \"quadruped\", got \"octopus\""},
       {R"({"format":"other","version":2,"character":"biped","params":{}})", "format: expected \"gaitlab-gait\", got \"other\""},
       {R"({"format":"gaitlab-gait","version":2,"character":"biped","params":[1,2]})", "params: expected an object, got an array of 2"},

@@ -99,6 +99,9 @@ TEST(GaitFile, AVersion1FileIsMigrated) {
   // Schema 2 dropped the support gain and added gains.swingTargetRate, whose 0 is version 1's
   // behaviour: a version-1 file loads with everything else unchanged.
   json v2 = json::parse(presetText(Character::Quadruped));
+  v2["version"] = 2;
+  v2.erase("speed");  // schema 4's speed keys
+  v2.erase("keys");
   json v1 = v2;
   v1["version"] = 1;
   v1["params"].erase("gains.swingTargetRate");
@@ -121,6 +124,9 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
   // Schema 3 added the low-speed capture-point placement per leg frame and speed tracking; weight
   // and gain 0 walk as version 2 did, so a version-2 file loads as itself with both off.
   json v3 = json::parse(presetText(Character::Biped));
+  v3["version"] = 3;
+  v3.erase("speed");  // schema 4's speed keys
+  v3.erase("keys");
   json v2 = v3;
   v2["version"] = 2;
   for (const char* key : {"legFrame.capturePlacement", "legFrame.captureBlendSpeed", "legFrame.captureSideways",
@@ -136,6 +142,28 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
   EXPECT_TRUE(sameBits(migrated.params, current.params));
   EXPECT_EQ(migrated.params.legFrames[0].capturePlacement, 0.0);
   EXPECT_EQ(migrated.params.speedIntegralGain, 0.0);
+}
+
+TEST(GaitFile, AVersion3FileIsMigrated) {
+  // Schema 4 added speed keys beside the parameters: a version-3 file is one key, tuned at 0 m/s,
+  // its parameters as they were; keys are refused in it.
+  json v4 = json::parse(presetText(Character::Biped));
+  ASSERT_TRUE(v4.contains("keys"));
+  json v3 = v4;
+  v3["version"] = 3;
+  v3.erase("speed");
+  v3.erase("keys");
+  GaitFile migrated, current;
+  ASSERT_FALSE(parseGaitFile(v3.dump(), Character::Biped, &migrated));
+  ASSERT_FALSE(parseGaitFile(v4.dump(), Character::Biped, &current));
+  EXPECT_TRUE(sameBits(migrated.params, current.params));
+  EXPECT_EQ(migrated.speed, 0.0);
+  EXPECT_TRUE(migrated.keys.empty());
+  EXPECT_EQ(migrated.gait().keys.size(), 1u);
+  v3["keys"] = v4["keys"];
+  const auto error = parseGaitFile(v3.dump(), Character::Biped, &migrated);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->field, "keys");
 }
 
 TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
@@ -219,6 +247,8 @@ TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
 TEST(GaitFile, NormalizeMigratesAndWritesTheCanonicalForm) {
   json old = json::parse(presetText(Character::Quadruped));
   old["version"] = 1;
+  old.erase("speed");  // schema 4's speed keys
+  old.erase("keys");
   old["params"].erase("gains.swingTargetRate");
   old["params"]["front.supportGain"] = 800;
   old["meta"] = {{"author", "x"}};

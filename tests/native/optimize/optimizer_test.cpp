@@ -250,13 +250,13 @@ TEST(OptimizeObjective, TimingDeviationIsTheMeanSquaredDutyError) {
   ObjectiveSettings s;
   s.seconds = 3.0;
   s.speeds = {0.5};
-  const gaitlab::gait::GaitParams p = gaitlab::gait::defaultParams(gaitlab::gait::Character::Quadruped);
+  const gaitlab::gait::Gait p = gaitlab::gait::defaultGait(gaitlab::gait::Character::Quadruped);
   const ObjectiveTerms plain = runEpisode(gaitlab::gait::Character::Quadruped, p, s, 0.5, 0, 1);
   s.wt = 10.0;
   const ObjectiveTerms weighted = runEpisode(gaitlab::gait::Character::Quadruped, p, s, 0.5, 0, 1);
   gaitlab::sim::WalkOptions w;
   w.character = gaitlab::gait::Character::Quadruped;
-  w.params = &p;
+  w.gait = &p;
   w.speed = 0.5;
   w.seconds = 3.0;
   w.seed = 1;
@@ -377,7 +377,7 @@ TEST(OptimizeSearch, TheSameSeedGivesTheSameSearchBitForBitWhateverTheThreadCoun
 // scores differently from flat ground), and a search over several grounds is as reproducible
 // as one over flat ground.
 TEST(OptimizeSearch, GroundsAreWalkedAndTheSearchStaysReproducible) {
-  const gait::GaitParams preset = gait::defaultParams(gait::Character::Biped);
+  const gait::Gait preset = gait::defaultGait(gait::Character::Biped);
   ObjectiveSettings s;
   s.seconds = 1.5;
   s.warmup = 0.5;

@@ -57,3 +57,28 @@ TEST(HotPath, StepsAllocateNothingInAnyMode) {
   }
   btAlignedAllocSetCustomAligned(nullptr, nullptr);
 }
+
+// A gait of several speed keys blends its parameters every step while the desired speed ramps
+// (gait/speed_keys.h): that too allocates nothing.
+TEST(HotPath, BlendingSpeedKeysAllocatesNothing) {
+  Simulation sim(1, 3, 1);
+  const int id = sim.spawn(Character::Biped, 0, 0, 0);
+  ASSERT_GE(id, 0);
+  gaitlab::gait::Gait gait = gaitlab::gait::Gait::single(sim.controller(0).params(), 0.0);
+  gaitlab::gait::SpeedKey fast{1.0, sim.controller(0).params()};
+  fast.params.period *= 0.9;
+  gait.keys.push_back(fast);
+  sim.controller(0).setGait(gait);
+  sim.setGoal(0, {1.0, 0.0});
+  sim.step(12);  // the first steps set up the controller's per-leg state
+  g_news = 0;
+  g_counting = true;
+  for (int i = 0; i < 60; ++i) sim.step(1);  // v_d ramps from ~0 towards 1 m/s: a blend each step
+  g_counting = false;
+  EXPECT_EQ(g_news.load(), 0);
+  const double vd = sim.controller(0).desiredVelocity().z();
+  ASSERT_GT(vd, 0.05);
+  ASSERT_LT(vd, 1.0);
+  EXPECT_DOUBLE_EQ(sim.controller(0).params().period,
+                   gait.keys[0].params.period + (fast.params.period - gait.keys[0].params.period) * vd);
+}

@@ -154,7 +154,8 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
   ASSERT_FALSE(error) << error->describe();
   WalkOptions o;
   o.character = Character::Quadruped;
-  o.params = &walk.params;
+  const gaitlab::gait::Gait gait = walk.gait();
+  o.gait = &gait;
   o.speed = 0.3;
   o.seconds = 20;
   const auto r = runWalk(o);

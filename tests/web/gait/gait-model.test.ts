@@ -4,7 +4,7 @@
 import { describe, expect, it } from 'vitest';
 import { CHARACTER_TYPES, isCharacterType, kindOf, typeOfKind } from '../../../web/src/gait/character';
 import { GaitModel, UNDO_LIMIT, type GaitTarget } from '../../../web/src/gait/gait-model';
-import { patched, presetGait, sameParams, type GaitFile, type ParamPatch } from '../../../web/src/share/gait-file';
+import { patched, presetGait, sameParams, type GaitFile, type ParamPatch, type SpeedKeys } from '../../../web/src/share/gait-file';
 import { schema } from '../fixtures/schema';
 
 /**
@@ -13,23 +13,23 @@ import { schema } from '../fixtures/schema';
  */
 class FakeSimulation {
   gait: GaitFile;
-  readonly sent: { target: GaitTarget; patch: ParamPatch }[] = [];
-  private queue: { patch: ParamPatch; resolve: () => void; reject: (e: Error) => void }[] = [];
+  readonly sent: { target: GaitTarget; patch: ParamPatch; speedKeys?: SpeedKeys }[] = [];
+  private queue: { patch: ParamPatch; speedKeys?: SpeedKeys; resolve: () => void; reject: (e: Error) => void }[] = [];
 
   constructor(gait: GaitFile) {
     this.gait = structuredClone(gait);
   }
 
-  send = (target: GaitTarget, patch: ParamPatch): Promise<void> => {
-    this.sent.push({ target, patch: structuredClone(patch) });
-    return new Promise((resolve, reject) => this.queue.push({ patch: structuredClone(patch), resolve, reject }));
+  send = (target: GaitTarget, patch: ParamPatch, speedKeys?: SpeedKeys): Promise<void> => {
+    this.sent.push({ target, patch: structuredClone(patch), ...(speedKeys ? { speedKeys: structuredClone(speedKeys) } : {}) });
+    return new Promise((resolve, reject) => this.queue.push({ patch: structuredClone(patch), speedKeys, resolve, reject }));
   };
 
   /** Applies every queued patch in order, answering each. */
   async answer(): Promise<void> {
     const queue = this.queue;
     this.queue = [];
-    for (const { patch, resolve, reject } of queue) {
+    for (const { patch, speedKeys, resolve, reject } of queue) {
       const entries = new Map(schema.characters[this.gait.character].map((e) => [e.name, e]));
       const bad = Object.entries(patch).find(([name, v]) => {
         const e = entries.get(name);
@@ -37,7 +37,7 @@ class FakeSimulation {
       });
       if (bad) reject(new Error(`the edit (patchParams) was refused: ${bad[0]}: ${String(bad[1])} is outside`));
       else {
-        this.gait = patched(this.gait, patch);
+        this.gait = patched(this.gait, patch, speedKeys);
         resolve();
       }
     }
@@ -135,6 +135,26 @@ describe('the gait model', () => {
     await sim.answer();
     expect(sameParams(sim.gait, preset)).toBe(true);
     expect(await model.replace(presetGait(schema, 'quadruped'))).toMatch(/quadruped's gait cannot drive a biped/);
+  });
+
+  it('carries speed keys when it replaces the whole gait, and undo takes them back', async () => {
+    const { preset, sim, model } = setUp();
+    const keyed: GaitFile = { ...patched(preset, { period: 0.8 }), speed: 1.4, keys: [{ speed: 1.7, params: { ...preset.params, period: 0.6 } }] };
+    void model.replace(keyed);
+    await sim.answer();
+    expect(sim.sent[0].speedKeys).toEqual({ speed: 1.4, keys: keyed.keys });
+    expect(sameParams(sim.gait, keyed)).toBe(true);
+    expect(sameParams(model.gait!, keyed)).toBe(true);
+    // An edit leaves the keys alone; undo of the replace restores the gait without keys.
+    void model.edit({ period: 0.9 });
+    await sim.answer();
+    expect(sim.sent[1].speedKeys).toBeUndefined();
+    expect(sim.gait.keys).toEqual(keyed.keys);
+    void model.undo();
+    await sim.answer();
+    expect(sameParams(sim.gait, preset)).toBe(true);
+    expect(sim.gait.keys).toBeUndefined();
+    expect(sameParams(sim.gait, keyed)).toBe(false);
   });
 
   it('ignores answers meant for the gait it edited before a load, and keeps a bounded history', async () => {

@@ -77,6 +77,16 @@ describe('gait links', () => {
     }
   });
 
+  it('carry speed keys', async () => {
+    const preset = presetGait(schema, 'biped');
+    const gait: GaitFile = { ...preset, speed: 1.4, keys: [{ speed: 1.7, params: { ...preset.params, period: 0.55 } }] };
+    const back = await decodeGaitHash(await encodeGaitHash(gait), passThrough);
+    expect(back.speed).toBe(1.4);
+    expect(back.keys).toEqual(gait.keys);
+    expect(sameParams(back, gait)).toBe(true);
+    expect(sameParams(back, preset)).toBe(false);
+  });
+
   it('keep links short', async () => {
     const hash = await encodeGaitHash(randomGait(random(7)));
     expect(hash.length).toBeLessThan(600);

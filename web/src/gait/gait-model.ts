@@ -11,7 +11,7 @@
 // simulation. Undo, redo and replacing the whole gait (a preset, an import) are patches too, of
 // every parameter: they restore exactly the remembered gait whatever happened in between.
 import type { CharacterType } from './character';
-import { patched, sameParams, type GaitFile, type ParamPatch } from '../share/gait-file';
+import { patched, sameParams, speedKeysOf, type GaitFile, type ParamPatch, type SpeedKeys } from '../share/gait-file';
 
 /** What is edited: one character, or every character of a type. */
 export interface GaitTarget {
@@ -19,8 +19,11 @@ export interface GaitTarget {
   character: CharacterType;
 }
 
-/** Sends a patch to the simulation; resolves with what it accepted, rejects with the refusal. */
-export type PatchSender = (target: GaitTarget, patch: ParamPatch) => Promise<ParamPatch | void>;
+/**
+ * Sends a patch to the simulation, with the gait's speed keys when they are to be set too (a whole
+ * gait); resolves with what it accepted, rejects with the refusal.
+ */
+export type PatchSender = (target: GaitTarget, patch: ParamPatch, speedKeys?: SpeedKeys) => Promise<ParamPatch | void>;
 
 export interface GaitModelEvents {
   /** The shown gait changed for another reason than an edit the editors made themselves (undo, a refusal, a load). */
@@ -35,7 +38,7 @@ export const UNDO_LIMIT = 100;
 export class GaitModel {
   private targetNow: GaitTarget = { id: 'all', character: 'biped' };
   private confirmed: GaitFile | null = null;
-  private pending: { seq: number; patch: ParamPatch }[] = [];
+  private pending: { seq: number; patch: ParamPatch; speedKeys?: SpeedKeys }[] = [];
   private shown: GaitFile | null = null;
   private undoStack: GaitFile[] = [];
   private redoStack: GaitFile[] = [];
@@ -106,7 +109,7 @@ export class GaitModel {
       return Promise.resolve(`a ${gait.character}'s gait cannot drive a ${this.targetNow.character}`);
     }
     this.remember();
-    return this.submit(gait.params, () => {}, true);
+    return this.submit(gait.params, () => {}, true, speedKeysOf(gait));
   }
 
   /** Brings back the gait before the last gesture; resolves as edit() does (null when there was nothing to undo). */
@@ -119,7 +122,7 @@ export class GaitModel {
       // Refused: the history is as it was before the undo.
       this.redoStack.pop();
       this.undoStack.push(previous);
-    }, true);
+    }, true, speedKeysOf(previous));
   }
 
   redo(): Promise<string | null> {
@@ -130,20 +133,20 @@ export class GaitModel {
     return this.submit(next.params, () => {
       this.undoStack.pop();
       this.redoStack.push(next);
-    }, true);
+    }, true, speedKeysOf(next));
   }
 
-  private async submit(patch: ParamPatch, onRefused: () => void, notify = false): Promise<string | null> {
+  private async submit(patch: ParamPatch, onRefused: () => void, notify = false, speedKeys?: SpeedKeys): Promise<string | null> {
     if (!this.shown || !this.confirmed) return 'there is no gait to edit yet';
     if (Object.keys(patch).length === 0) return null;
     const seq = ++this.seq;
     const epoch = this.epoch;
-    this.pending.push({ seq, patch });
-    this.shown = patched(this.shown, patch);
+    this.pending.push({ seq, patch, speedKeys });
+    this.shown = patched(this.shown, patch, speedKeys);
     if (notify) this.events.changed(this.shown);
     let accepted: ParamPatch | void;
     try {
-      accepted = await this.send(this.targetNow, patch);
+      accepted = speedKeys ? await this.send(this.targetNow, patch, speedKeys) : await this.send(this.targetNow, patch);
     } catch (error) {
       const message = error instanceof Error ? error.message : String(error);
       if (epoch === this.epoch) {
@@ -160,7 +163,7 @@ export class GaitModel {
     }
     if (epoch === this.epoch) {
       // What the simulation says it took (the same values, as the worker answers).
-      this.confirmed = patched(this.confirmed!, accepted ?? patch);
+      this.confirmed = patched(this.confirmed!, accepted ?? patch, speedKeys);
       this.pending = this.pending.filter((p) => p.seq !== seq);
     }
     return null;
@@ -168,6 +171,6 @@ export class GaitModel {
 
   private recompute(): void {
     if (!this.confirmed) return;
-    this.shown = this.pending.reduce((g, p) => patched(g, p.patch), this.confirmed);
+    this.shown = this.pending.reduce((g, p) => patched(g, p.patch, p.speedKeys), this.confirmed);
   }
 }

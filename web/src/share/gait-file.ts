@@ -63,12 +63,37 @@ export type ParamValue = number | number[];
 /** Some parameters and their new values: an edit of a gait. */
 export type ParamPatch = Record<string, ParamValue>;
 
+/**
+ * A complete parameter set tuned at one speed. A gait of schema 4 may have several: its "params"
+ * tuned at its "speed", and more "keys"; the module blends them by the desired speed
+ * (native/src/gait/speed_keys.h).
+ */
+export interface SpeedKey {
+  speed: number;
+  params: Record<string, ParamValue>;
+}
+
+/** A gait's speed keys besides its parameters: the speed "params" is tuned at, and the other keys. */
+export interface SpeedKeys {
+  speed: number;
+  keys: SpeedKey[];
+}
+
 export interface GaitFile {
   format: 'gaitlab-gait';
   version: number;
   character: CharacterType;
+  /** m/s, the speed `params` is tuned at (absent: 0). */
+  speed?: number;
   params: Record<string, ParamValue>;
+  /** More parameter sets tuned at other speeds (absent: none). */
+  keys?: SpeedKey[];
   meta?: Record<string, unknown>;
+}
+
+/** The speed keys of `gait`, with the defaults of a gait without them. */
+export function speedKeysOf(gait: GaitFile): SpeedKeys {
+  return { speed: gait.speed ?? 0, keys: gait.keys ?? [] };
 }
 
 export const GAIT_FORMAT = 'gaitlab-gait';
@@ -114,14 +139,27 @@ const sameValue = (x: ParamValue | undefined, y: ParamValue | undefined): boolea
 /** Two gaits have the same parameters, exactly (bit for bit: what the sharing tests ask). */
 export function sameParams(a: GaitFile, b: GaitFile): boolean {
   if (a.character !== b.character) return false;
+  if (JSON.stringify(speedKeysOf(a)) !== JSON.stringify(speedKeysOf(b))) return false;
   const keys = Object.keys(a.params);
   if (keys.length !== Object.keys(b.params).length) return false;
   return keys.every((k) => sameValue(a.params[k], b.params[k]));
 }
 
-/** `gait` with `patch` applied (a new object; `gait` is left as it was). */
-export function patched(gait: GaitFile, patch: ParamPatch): GaitFile {
+/**
+ * `gait` with `patch` applied, and its speed keys replaced by `speedKeys` when given (a new object;
+ * `gait` is left as it was).
+ */
+export function patched(gait: GaitFile, patch: ParamPatch, speedKeys?: SpeedKeys): GaitFile {
   const params = { ...gait.params };
   for (const [name, value] of Object.entries(patch)) params[name] = Array.isArray(value) ? [...value] : value;
-  return { ...gait, params };
+  const result: GaitFile = { ...gait, params };
+  if (speedKeys) {
+    delete result.speed;
+    delete result.keys;
+    if (speedKeys.speed !== 0 || speedKeys.keys.length > 0) {
+      result.speed = speedKeys.speed;
+      result.keys = structuredClone(speedKeys.keys);
+    }
+  }
+  return result;
 }

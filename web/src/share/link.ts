@@ -110,7 +110,9 @@ async function inflateRaw(bytes: Uint8Array, limit: number): Promise<Uint8Array>
 /** The hash (with its leading '#') that carries `gait`. */
 export async function encodeGaitHash(gait: GaitFile): Promise<string> {
   // "meta" stays out of links: it is provenance for files, and would only make links longer.
-  const json = JSON.stringify({ format: gait.format, version: gait.version, character: gait.character, params: gait.params });
+  // Speed keys (schema 4) travel with the parameters.
+  const keyed = gait.speed !== undefined || gait.keys !== undefined ? { speed: gait.speed ?? 0, keys: gait.keys ?? [] } : {};
+  const json = JSON.stringify({ format: gait.format, version: gait.version, character: gait.character, ...keyed, params: gait.params });
   const text = new TextEncoder().encode(json);
   const packed = await deflateRaw(text);
   const bytes = new Uint8Array(4 + packed.length);

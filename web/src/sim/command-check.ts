@@ -108,6 +108,20 @@ function patch(value: unknown): Record<string, number | number[]> {
   return out;
 }
 
+/** A gait's speed keys (gait-file.ts SpeedKeys): shapes and numbers; the module checks the rest. */
+function speedKeys(value: unknown): { speed: number; keys: { speed: number; params: Record<string, number | number[]> }[] } {
+  const s = fields(value, 'speedKeys');
+  if (!Array.isArray(s.keys)) throw new Refused('speedKeys.keys: expected an array');
+  if (s.keys.length > MAX_JSON_ARRAY) throw new Refused(`speedKeys.keys: more than ${MAX_JSON_ARRAY} keys`);
+  return {
+    speed: number(s.speed, 'speedKeys.speed', 0, MAX_GOAL_SPEED),
+    keys: s.keys.map((k: unknown, i: number) => {
+      const key = fields(k, `speedKeys.keys[${i}]`);
+      return { speed: number(key.speed, `speedKeys.keys[${i}].speed`, 0, MAX_GOAL_SPEED), params: patch(key.params) };
+    }),
+  };
+}
+
 const character = (value: unknown) => oneOf(value, 'character', CHARACTER_TYPES);
 const request = (value: unknown) => integer(value, 'request', 0, Number.MAX_SAFE_INTEGER);
 
@@ -148,6 +162,7 @@ const SCENE_RULES: Record<SceneCommand['type'], (c: Fields) => SceneCommand> = {
     id: idOrAll(c.id),
     character: character(c.character),
     patch: patch(c.patch),
+    ...(c.speedKeys !== undefined ? { speedKeys: speedKeys(c.speedKeys) } : {}),
     ...(c.request !== undefined ? { request: request(c.request) } : {}),
   }),
   learner: (c) => ({

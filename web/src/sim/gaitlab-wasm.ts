@@ -36,6 +36,7 @@ export interface GaitlabModule {
   _gl_sim_add_characters(sim: number, kind: number, count: number): number;
   _gl_sim_add_apart(sim: number, kind: number): number;
   _gl_cruise_speed(kind: number): number;
+  _gl_top_speed(kind: number): number;
   _gl_sim_demo_scene(sim: number, characters: number): number;
   _gl_sim_step(sim: number, steps: number): number;
   _gl_sim_time(sim: number): number;
@@ -295,6 +296,11 @@ export function presetJson(module: GaitlabModule, kind: number): string {
  */
 export function normalizeGait(module: GaitlabModule, json: string): string {
   return withString(module, json, (pointer) => checkString(module, 'gl_gait_normalize', module._gl_gait_normalize(pointer)));
+}
+
+/** The fastest speed a character kind's preset gait is tuned for, m/s: its fastest speed key (gl_top_speed). */
+export function topSpeed(module: GaitlabModule, kind: number): number {
+  return checkNumber(module, 'gl_top_speed', module._gl_top_speed(kind));
 }
 
 /** The speed a character kind's preset is tuned for, m/s (gl_cruise_speed). */

@@ -7,7 +7,7 @@
 import { MAX_THREADS } from './gaitlab-wasm';
 import { isTerrainKind, type TerrainGrid, type TerrainKind } from './terrain-grid';
 import type { CharacterType } from '../gait/character';
-import type { ParamPatch } from '../share/gait-file';
+import type { ParamPatch, SpeedKeys } from '../share/gait-file';
 
 export type { CharacterType } from '../gait/character';
 
@@ -73,7 +73,7 @@ export type SceneCommand =
    * `character`'s type with id 'all' (gl_sim_patch_params: each value checked against the
    * schema, all or nothing). With `request`, answered by a `patched` event.
    */
-  | { type: 'patchParams'; id: number | 'all'; character: CharacterType; patch: ParamPatch; request?: number }
+  | { type: 'patchParams'; id: number | 'all'; character: CharacterType; patch: ParamPatch; speedKeys?: SpeedKeys; request?: number }
   /**
    * The optimize panel's learner ("learning to walk", thesis Figure 3.6): a character of its
    * own, apart from the crowd, that walks a search's best gait so far. Each of these replaces
@@ -183,6 +183,11 @@ export type SimEvent =
       schema: string | null;
       /** The optimiser's objective settings (gl_opt_settings_json), or null if this build has none. */
       optimizerSchema: string | null;
+      /**
+       * The goal speeds each type's preset walks, m/s: from 0 (it stops and steps in place) to
+       * its fastest speed key (gl_top_speed). The steering sliders span them.
+       */
+      speedRanges: Record<CharacterType, { min: number; max: number }>;
     }
   /** Answer to getParams / getPreset / normalize: the gait file's JSON, or why there is none. */
   | { type: 'params'; request: number; json: string | null; error: string | null }

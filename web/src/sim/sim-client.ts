@@ -1,7 +1,7 @@
 // Main-thread side of the sim worker: starts it, sends typed commands, and keeps the newest
 // statistics and render-buffer reader. It never steps anything itself (docs/design.md, data flow).
 import { errorMessage, type CharacterType, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
-import type { ParamPatch } from '../share/gait-file';
+import type { ParamPatch, SpeedKeys } from '../share/gait-file';
 import { RenderBufferReader } from './render-buffer';
 import type { TerrainGrid } from './terrain-grid';
 
@@ -9,7 +9,7 @@ export interface SimClientEvents {
   /** A new scene's render buffer is ready to be drawn (after start and after every reset). */
   onScene?: (
     reader: RenderBufferReader,
-    info: { generation: number; threads: number; version: string; schema: string | null; optimizerSchema: string | null },
+    info: Pick<Extract<SimEvent, { type: 'ready' }>, 'generation' | 'threads' | 'version' | 'schema' | 'optimizerSchema' | 'speedRanges'>,
   ) => void;
   /** The simulation refused a command (the message says why). */
   onCommandError?: (message: string) => void;
@@ -68,8 +68,9 @@ export class SimClient {
    * An edit of character `id`'s parameters (or of every character of the type): resolves when
    * the simulation accepted it, rejects with its refusal (the command and the parameter named).
    */
-  patchParams(id: number | 'all', character: CharacterType, patch: ParamPatch): Promise<ParamPatch> {
-    return this.request((request) => ({ type: 'scene', command: { type: 'patchParams', id, character, patch, request } })).then(
+  patchParams(id: number | 'all', character: CharacterType, patch: ParamPatch, speedKeys?: SpeedKeys): Promise<ParamPatch> {
+    const command = { type: 'patchParams' as const, id, character, patch, ...(speedKeys ? { speedKeys } : {}) };
+    return this.request((request) => ({ type: 'scene', command: { ...command, request } })).then(
       (accepted) => JSON.parse(accepted) as ParamPatch,
     );
   }

@@ -12,6 +12,7 @@ import { FixedStepClock } from './fixed-step-clock';
 import {
   ALTERNATING,
   cruiseSpeed,
+  topSpeed,
   ERR,
   GaitlabError,
   gaitlabVersion,
@@ -222,6 +223,10 @@ class WorkerScene {
       version: gaitlabVersion(module),
       schema: schemaJson(module),
       optimizerSchema: optimizerSettingsJson(module),
+      speedRanges: {
+        biped: { min: 0, max: topSpeed(module, Kind.biped) },
+        quadruped: { min: 0, max: topSpeed(module, Kind.quadruped) },
+      },
     });
     this.postTerrain();
     if (!this.paused) this.clock.start(this.now());
@@ -407,7 +412,9 @@ class WorkerScene {
         const who = command.id === 'all' ? `every ${command.character}` : `${command.character} #${command.id}`;
         let error: string | null = null;
         try {
-          sim.patchParams(command.id === 'all' ? -1 : command.id, Kind[command.character], JSON.stringify(command.patch));
+          // Speed keys, when given, go in the same patch ("speed" and "keys", gl_sim_patch_params).
+          const patch = command.speedKeys ? { ...command.patch, ...command.speedKeys } : command.patch;
+          sim.patchParams(command.id === 'all' ? -1 : command.id, Kind[command.character], JSON.stringify(patch));
         } catch (e) {
           if (!(e instanceof GaitlabError)) throw e;
           error = `the edit of ${who} (patchParams) was refused: ${e.detail}`;

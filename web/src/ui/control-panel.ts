@@ -8,11 +8,9 @@ import { TIME_SCALES, type CharacterType, type TimeScale } from '../sim/protocol
 import { TERRAIN_KINDS, type TerrainKind } from '../sim/terrain-grid';
 
 /**
- * The speeds each type is measured to walk at (README, Walking, from `node bench/walking.mjs`):
- * the biped at 0.5 and 1.0 m/s, the quadruped's trot at 0.4 and 0.8 m/s, with no fall in 60 s
- * and on ±5° slopes and bumps. The module exposes one speed per type (gl_cruise_speed, the one
- * each is tuned for, inside these ranges); these ranges are the measured ones: beyond them the
- * presets are not known to walk, so the sliders stop there.
+ * The goal speeds the sliders offer until the module says which its presets walk (the `ready`
+ * event's speedRanges: from 0 to each preset's fastest speed key, gl_top_speed): the speeds
+ * both are benchmarked at (README, Walking).
  */
 export const WALKING_SPEEDS: Record<CharacterType, { min: number; max: number }> = {
   biped: { min: 0.5, max: 1.0 },
@@ -66,6 +64,8 @@ export class ControlPanel {
   private readonly selectionButtons: Controller[];
   private readonly steerLabel: Controller;
   private readonly speedControls: Record<CharacterType, Controller>;
+  /** The goal speeds each type's slider spans (setSpeedRanges). */
+  private ranges: Record<CharacterType, { min: number; max: number }> = structuredClone(WALKING_SPEEDS);
   private readonly turnControl: Controller;
   private readonly wanderControl: Controller;
   /** The selection the steering acts on, or 'all'. */
@@ -123,11 +123,9 @@ export class ControlPanel {
         .onChange(send)
         .listen(),
     };
-    guardNumberController(this.speedControls.biped, WALKING_SPEEDS.biped.min, WALKING_SPEEDS.biped.max, 'biped speed');
-    guardNumberController(this.speedControls.quadruped, WALKING_SPEEDS.quadruped.min, WALKING_SPEEDS.quadruped.max, 'dog speed');
-    for (const type of CHARACTER_TYPES) {
-      this.speedControls[type].domElement.title = `the speeds a ${type} is measured to walk at (README, Walking): ${WALKING_SPEEDS[type].min}–${WALKING_SPEEDS[type].max} m/s`;
-    }
+    guardNumberController(this.speedControls.biped, () => this.ranges.biped.min, () => this.ranges.biped.max, 'biped speed');
+    guardNumberController(this.speedControls.quadruped, () => this.ranges.quadruped.min, () => this.ranges.quadruped.max, 'dog speed');
+    this.setSpeedRanges(this.ranges);
     this.turnControl = steer.add(v, 'turnDegrees', -MAX_TURN_DEGREES, MAX_TURN_DEGREES, 1).name('turn (°/s)').onChange(send).listen();
     guardNumberController(this.turnControl, -MAX_TURN_DEGREES, MAX_TURN_DEGREES, 'turn');
     this.turnControl.domElement.title = 'the turn rates the gaits are measured to follow: ±0.3 rad/s; while wandering, wandering chooses it';
@@ -154,6 +152,28 @@ export class ControlPanel {
     this.setSelection(null);
   }
 
+
+  /** The goal speeds a type's slider spans. */
+  speedRange(type: CharacterType): { min: number; max: number } {
+    return this.ranges[type];
+  }
+
+  /**
+   * The goal speeds each type walks (from the module: 0 to its preset's fastest speed key); a
+   * slider beyond its new range is brought inside it.
+   */
+  setSpeedRanges(ranges: Record<CharacterType, { min: number; max: number }>): void {
+    this.ranges = structuredClone(ranges);
+    for (const type of CHARACTER_TYPES) {
+      const { min, max } = this.ranges[type];
+      const control = this.speedControls[type];
+      control.min(min).max(max);
+      if (Number(control.getValue()) > max) control.setValue(max);
+      if (Number(control.getValue()) < min) control.setValue(min);
+      control.domElement.title = `the goal speeds the ${type}'s gait walks: ${min}–${max} m/s (0 steps in place; the top is its fastest speed key)`;
+      control.updateDisplay();
+    }
+  }
   /** A refusal beside "Add characters" (null clears it). */
   showCrowdLimit(text: string | null): void {
     this.limitNote.textContent = text ?? '';

@@ -46,14 +46,20 @@ export function showFieldMessage(field: HTMLElement, text: string | null): void 
  * [min, max]; otherwise a message beside the field says why, nothing changes, and the field shows
  * the applied value again when it loses focus (lil-gui's blur redraws it).
  */
-export function guardNumberController(controller: Controller, min: number, max: number, label: string): void {
+export function guardNumberController(
+  controller: Controller,
+  min: number | (() => number),
+  max: number | (() => number),
+  label: string,
+): void {
+  const bound = (b: number | (() => number)) => (typeof b === 'function' ? b() : b);
   const input = controller.domElement.querySelector('input');
   if (!input) return;
   // Capture: before lil-gui's own 'input' listener on the same element, which would clamp.
   input.addEventListener(
     'input',
     (event) => {
-      const reading = readNumberField(input.value, min, max);
+      const reading = readNumberField(input.value, bound(min), bound(max));
       if ('error' in reading) {
         event.stopImmediatePropagation();
         showFieldMessage(controller.domElement, `${label}: ${reading.error}; not applied (still ${Number(controller.getValue())})`);

@@ -15,7 +15,7 @@ import type { GaitTransfer } from './gait-transfer';
 import type { Overlay } from './overlay';
 import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
 import { GaitModel, type GaitTarget } from '../gait/gait-model';
-import { GaitError, type GaitFile, type ParamPatch, type ParamSchema, type ParamValue, type SchemaEntry, type SchemaLeg } from '../share/gait-file';
+import { GaitError, speedKeysOf, type GaitFile, type ParamPatch, type ParamSchema, type ParamValue, type SchemaEntry, type SchemaLeg } from '../share/gait-file';
 import type { CharacterStatus } from '../sim/protocol';
 import type { SimClient } from '../sim/sim-client';
 
@@ -111,7 +111,7 @@ export class GaitEditors {
     private readonly folder: GUI,
     private readonly overlay: Overlay,
   ) {
-    this.model = new GaitModel((target, patch) => client.patchParams(target.id, target.character, patch), {
+    this.model = new GaitModel((target, patch, speedKeys) => client.patchParams(target.id, target.character, patch, speedKeys), {
       changed: () => this.refresh(),
       refused: (message) => this.overlay.message(`${message}; the editors show the gait the simulation has.`, 'problem'),
     });
@@ -478,7 +478,7 @@ export class GaitEditors {
       this.folder.controllersRecursive().forEach((c) => c.updateDisplay());
       // Every parameter, as one patch to every character of the type: the editors load the gait
       // once the simulation has it (the worker answers after applying it).
-      await this.client.patchParams('all', gait.character, gait.params);
+      await this.client.patchParams('all', gait.character, gait.params, speedKeysOf(gait));
       this.overlay.message(`Shared ${gait.character} gait loaded from the link; every ${gait.character} walks with it.`);
     } catch (error) {
       const text = error instanceof GaitError || error instanceof Error ? error.message : `unexpected problem (${String(error)})`;

@@ -1,0 +1,57 @@
+#include "gait/speed_keys.h"
+
+#include <cmath>
+#include <cstring>
+#include <type_traits>
+
+namespace gaitlab::gait {
+
+// paramsAtSpeed finds a field of one GaitParams in another by its byte offset: every field is a
+// double (motion graphs are arrays of them), so the struct is plain data laid out alike in both.
+static_assert(std::is_trivially_copyable_v<GaitParams> && std::is_standard_layout_v<GaitParams>,
+              "GaitParams must stay plain data of doubles");
+static_assert(sizeof(GaitParams) % sizeof(double) == 0, "GaitParams must hold doubles only");
+
+int Gait::keyAt(double speed) const {
+  for (size_t i = 0; i < keys.size(); ++i)
+    if (std::abs(keys[i].speed - speed) <= 1e-9) return static_cast<int>(i);
+  return -1;
+}
+
+void paramsAtSpeed(Character c, const Gait& gait, double speed, GaitParams* out) {
+  const std::vector<SpeedKey>& keys = gait.keys;
+  const double s = std::abs(speed);
+  if (keys.size() == 1 || !(s > keys.front().speed)) {  // also NaN
+    *out = keys.front().params;
+    return;
+  }
+  if (s >= keys.back().speed) {
+    *out = keys.back().params;
+    return;
+  }
+  size_t hi = 1;
+  while (keys[hi].speed <= s) ++hi;
+  const SpeedKey& a = keys[hi - 1];
+  const SpeedKey& b = keys[hi];
+  const double t = (s - a.speed) / (b.speed - a.speed);
+  *out = a.params;
+  // One pointer captured: the visitor's std::function keeps it without allocating.
+  struct Blend {
+    const GaitParams* out;
+    const GaitParams* a;
+    const GaitParams* b;
+    double t;
+  } blend{out, &a.params, &b.params, t};
+  forEachParam(c, *out, [&blend](const ParamField& f) {
+    const std::ptrdiff_t offset =
+        reinterpret_cast<const char*>(f.values) - reinterpret_cast<const char*>(blend.out);
+    for (int k = 0; k < f.spec.knots; ++k) {
+      double x, y;
+      std::memcpy(&x, reinterpret_cast<const char*>(blend.a) + offset + k * sizeof(double), sizeof x);
+      std::memcpy(&y, reinterpret_cast<const char*>(blend.b) + offset + k * sizeof(double), sizeof y);
+      f.values[k] = x + (y - x) * blend.t;
+    }
+  });
+}
+
+}  // namespace gaitlab::gait

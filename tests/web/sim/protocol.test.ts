@@ -39,7 +39,7 @@ describe('simOptionsFromQuery', () => {
     const notes: string[] = [];
     expect(simOptionsFromQuery('?threads=0&seed=-3&characters=2.5', defaults, notes)).toEqual({ ...defaults, threads: 1, seed: 0, characters: 3 });
     expect(notes).toEqual([
-      '?threads=0 is not a whole number in [1, 5]: using 1',
+      '?threads=0 is not a whole number in [1, 16]: using 1',
       '?seed=-3 is not a whole number in [0, 4294967295]: using 0',
       '?characters=2.5 is not a whole number in [0, 256]: using 3',
     ]);

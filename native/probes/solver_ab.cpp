@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   }
   const std::string legs = argv[1];
   const int characters = std::atoi(argv[2]), steps = std::atoi(argv[3]);
-  const int shards = argc > 4 ? std::atoi(argv[4]) : std::min(12, characters);
+  const int shards = argc > 4 ? std::atoi(argv[4]) : std::min(gaitlab::sim::kCrowdShards, characters);
   using gaitlab::sim::Crowd;
   const Crowd crowd = legs == "2" ? Crowd::Bipeds : legs == "4" ? Crowd::Quadrupeds : Crowd::Mixed;
   gaitlab::sim::Simulation sim(1, 1, shards);

@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   std::vector<Sample> samples;
   samples.reserve(static_cast<size_t>(steps) * runs);
   for (int run = 0; run < runs; ++run) {
-    auto sim = std::make_unique<Simulation>(threads, 1, std::min(12, characters));
+    auto sim = std::make_unique<Simulation>(threads, 1, std::min(kCrowdShards, characters));
     sim->crowdScene(crowd, characters, 4.0);
     sim->setMode(mode);
     for (int s = 0; s < steps; ++s) {

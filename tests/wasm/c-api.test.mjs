@@ -5,6 +5,7 @@
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
+import os from 'node:os';
 import path from 'node:path';
 import { after, before, describe, it } from 'node:test';
 import { fileURLToPath } from 'node:url';
@@ -49,21 +50,32 @@ describe('the C ABI contract in WASM', () => {
 
   after(() => Module?.PThread?.terminateAllThreads());
 
-  it('has the header\'s thread limit', () => {
-    assert.equal(Module._gl_max_threads(), Number(/^#define GL_MAX_THREADS (\d+)$/m.exec(header)[1]));
-    const sim = Module._gl_sim_create(99, 1);
-    assert.equal(Module._gl_sim_threads(sim), Module._gl_max_threads(), 'clamped to the limit, and the pool starts them');
+  it('has the header\'s thread limit, a pool sized from the cores, and refuses more threads than the pool serves', () => {
+    const most = Number(/^#define GL_MAX_THREADS (\d+)$/m.exec(header)[1]);
+    assert.equal(Module._gl_max_threads(), most);
+    // One worker per core beyond the caller's, at least one (pthread_pool.pre.js.in).
+    const pool = Math.min(most, Math.max(2, os.cpus().length));
+    assert.equal(Module._gl_pool_threads(), pool);
+    assert.equal(Module._gl_default_threads(), Math.min(pool, os.cpus().length));
+    const sim = Module._gl_sim_create(pool, 1);
+    assert.notEqual(sim, 0, 'the pool starts every thread it serves');
+    assert.equal(Module._gl_sim_threads(sim), pool);
     Module._gl_sim_step(sim, 1);
     Module._gl_sim_destroy(sim);
+    if (pool < most) {
+      // Refused at once, never a hang or an abort: a pthread beyond the pool cannot start.
+      assert.equal(Module._gl_sim_create(99, 1), 0, 'clamped to GL_MAX_THREADS, more than the pool serves');
+      assert.match(Module.UTF8ToString(Module._gl_last_error()), /^threads: 16 needs 15 pool threads and only \d+ of the module's \d+ are free/);
+    }
   });
 
   it('fills each settings struct at the header\'s offsets', () => {
     const bench = defaults('gl_bench_settings', '_gl_bench_defaults');
     try {
-      // sim::PointSpec's defaults: 2 legs, 1 character, 1 thread, serial, 800 steps, 20 runs, 12 shards, seed 1, 4 m, no frames.
+      // sim::PointSpec's defaults: 2 legs, 1 character, 1 thread, serial, 800 steps, 20 runs, 16 shards, seed 1, 4 m, no frames.
       assert.deepEqual(
         ['legs', 'characters', 'threads', 'mode', 'steps', 'runs', 'shards', 'frames'].map(bench.read.i32),
-        [2, 1, 1, 0, 800, 20, 12, 0]);
+        [2, 1, 1, 0, 800, 20, 16, 0]);
       assert.equal(bench.read.u32('seed'), 1);
       assert.equal(bench.read.f64('spacing'), 4);
     } finally {

@@ -17,7 +17,6 @@ const wasmDir = path.join(repoDir, 'build', 'wasm');
 const KIND = { biped: 0, quadruped: 1, box: 2 };
 const ERR = { argument: -1, full: -5 };
 const INFO_FIELDS = 12; // GL_INFO_FIELDS
-const MAX_THREADS = 5;
 
 // The costs sim/capacity.h charges, read from the header so the test follows it.
 const capacity = fs.readFileSync(path.join(repoDir, 'native/src/sim/capacity.h'), 'utf8');
@@ -144,7 +143,7 @@ describe('the C ABI in WebAssembly', () => {
   });
 
   it('refuses a simulation that needs more of the pthread pool than is free', () => {
-    const a = Module._gl_sim_create(MAX_THREADS, 1);
+    const a = Module._gl_sim_create(Module._gl_pool_threads(), 1); // every worker of the pool
     assert.notEqual(a, 0);
     assert.equal(Module._gl_sim_create(2, 1), 0);
     assert.match(lastError(), /^threads: 2 needs 1 pool threads and only 0/);

@@ -25,6 +25,7 @@
 #include "peers/morphology_json.h"
 #include "peers/reference_scene.h"
 #include "sim/simulation.h"
+#include "sim/thread_budget.h"
 
 using gaitlab::api::SimHandle;
 using gaitlab::gait::Character;
@@ -78,30 +79,12 @@ std::string outOfRange(const std::string& name, const double (&v)[3], double max
   return "";
 }
 
-// The WASM build's pthread pool is fixed (GL_MAX_THREADS - 1 workers, PTHREAD_POOL_SIZE): a
-// thread beyond it would abort the module (PTHREAD_POOL_SIZE_STRICT). Every simulation, search
-// and benchmark point takes its workers (threads - 1) from this count and gives them back when it
-// ends; one that would need more than are free is refused. Natively threads are the machine's.
-#ifdef __EMSCRIPTEN__
-constexpr int kPoolWorkers = GL_MAX_THREADS - 1;
-#else
-constexpr int kPoolWorkers = std::numeric_limits<int>::max();
-#endif
-std::atomic<int> g_workersInUse{0};
-bool takeWorkers(int threads) {
-  const int want = threads - 1;
-  int used = g_workersInUse.load();
-  do {
-    if (want > kPoolWorkers - used) return false;
-  } while (!g_workersInUse.compare_exchange_weak(used, used + want));
-  return true;
-}
-void giveWorkers(int threads) { g_workersInUse -= threads - 1; }
-std::string noWorkers(int threads) {
-  return "threads: " + str(threads) + " needs " + str(threads - 1) + " pool threads and only " +
-         str(kPoolWorkers - g_workersInUse.load()) + " of the module's " + str(GL_MAX_THREADS - 1) +
-         " are free (other simulations or searches use the rest)";
-}
+// Threads: every simulation, search and benchmark point takes its workers from the WASM build's
+// pthread pool and gives them back when it ends (sim/thread_budget.h).
+using gaitlab::sim::giveWorkers;
+using gaitlab::sim::noWorkers;
+using gaitlab::sim::takeWorkers;
+static_assert(GL_MAX_THREADS == gaitlab::sim::kMaxThreads, "one most-threads figure");
 
 // The message of a spawn refused for want of room: what is full.
 std::string noRoom(void* s, int kind) { return "no room: " + handle(s)->simulation.fullReason(kind); }
@@ -173,13 +156,18 @@ const char* gl_version(void) { return GAITLAB_VERSION; }
 
 int gl_max_threads(void) { return GL_MAX_THREADS; }
 
+int gl_pool_threads(void) { return gaitlab::sim::maxThreads(); }
+
+int gl_default_threads(void) { return gaitlab::sim::defaultThreads(); }
+
 // ---- Simulation ----------------------------------------------------------------------------
 
 void* gl_sim_create(int threads, uint32_t seed) {
   threads = clampThreads(threads);
   const int64_t headroom = gaitlab::sim::heapHeadroom();
-  if (headroom >= 0 && headroom < gaitlab::sim::kSimulationBytes)
-    return refuse<void*>(nullptr, "memory: a simulation needs " + str(static_cast<int>(gaitlab::sim::kSimulationBytes >> 20)) +
+  const int64_t needs = gaitlab::sim::kSimulationBytes + std::max(0, threads - 2) * gaitlab::sim::kWorkerStackBytes;
+  if (headroom >= 0 && headroom < needs)
+    return refuse<void*>(nullptr, "memory: a simulation on " + str(threads) + " threads needs " + str(static_cast<int>(needs >> 20)) +
                                       " MiB and the module has " + str(static_cast<int>(headroom >> 20)) + " MiB left beside its reserve");
   if (!takeWorkers(threads)) return refuse<void*>(nullptr, noWorkers(threads));
   return new SimHandle(threads, seed);
@@ -643,7 +631,13 @@ void* gl_peer_scene_create(int kind, int characters, int threads) {
       gaitlab::sim::affordable(headroom - gaitlab::sim::kSimulationBytes,
                                biped ? gaitlab::sim::kBipedBytes : gaitlab::sim::kQuadrupedBytes, bodies, 0) < characters)
     return refuse<void*>(nullptr, "characters: " + str(characters) + " do not fit in the module's memory now");
-  return new gaitlab::peers::ReferenceScene(c, characters, clampThreads(threads));
+  // Its pool is not charged to the module's pthread pool (the peer benchmark runs alone), but
+  // it may not need more workers than the pool holds: a thread beyond it would abort the module.
+  threads = clampThreads(threads);
+  if (threads > gaitlab::sim::maxThreads())
+    return refuse<void*>(nullptr, "threads: " + str(threads) + " is more than the module's pool serves (" +
+                                      str(gaitlab::sim::maxThreads()) + ", gl_pool_threads)");
+  return new gaitlab::peers::ReferenceScene(c, characters, threads);
 }
 
 void gl_peer_scene_destroy(void* scene) { delete static_cast<gaitlab::peers::ReferenceScene*>(scene); }

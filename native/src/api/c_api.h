@@ -17,10 +17,11 @@
 //   Checked.   Ids, kinds, counts, enum values, numbers and JSON text are checked: numbers for
 //              finiteness and against api/limits.h's ranges, JSON text against its limits on
 //              bytes, nesting depth and string and array lengths. Thread counts
-//              are not refused but clamped to [1, GL_MAX_THREADS] (gl_sim_threads tells the
-//              count in use). Handles and output arrays are not checked: a handle must come from
-//              its create function and not be destroyed yet, an output array must be as large
-//              as the function says.
+//              are clamped to [1, GL_MAX_THREADS] (gl_sim_threads tells the count in use),
+//              then refused if the WASM build's pthread pool has too few free workers.
+//              Handles and output arrays are not checked: a handle must come from its create
+//              function and not be destroyed yet, an output array must be as large as the
+//              function says.
 //   Strings.   Returned strings are owned by the library, UTF-8, NUL-terminated. Their lifetime:
 //              - strings that never change (gl_version, gl_schema_json, gl_preset_json,
 //                gl_opt_settings_json, gl_bench_machine, gl_morphology_json) are static: valid for the module's
@@ -46,15 +47,19 @@
 #define GL_EXPORT
 #endif
 
-// Most threads a simulation, a search or a benchmark point uses. The WASM build pre-starts a
-// fixed pool of GL_MAX_THREADS - 1 pthread workers (PTHREAD_POOL_SIZE, which
-// native/CMakeLists.txt derives from this line), since a thread's pool holds the calling thread
-// plus threads - 1 workers, and a pthread beyond the pool would need a new Worker, which cannot
-// start while the browser's worker that owns the module is blocked in a step. Thread counts
-// above the hardware's are allowed (the thesis ran 2-4). The page's copy (MAX_THREADS,
-// web/src/sim/protocol.ts) is checked against this line by a test and against
-// gl_max_threads() when the module loads.
-#define GL_MAX_THREADS 5
+// Most threads a simulation, a search or a benchmark point uses: 16, the cores of today's larger
+// desktops. The WASM build pre-starts a pool of pthread workers when the module loads, sized
+// from the device (native/src/api/pthread_pool.pre.js.in: navigator.hardwareConcurrency, in Node
+// the core count, or the loader's `poolThreads` option; at least 1 and at most GL_MAX_THREADS - 1
+// workers), since a thread's pool holds the calling thread plus threads - 1 workers, and a
+// pthread beyond the pool would need a new Worker, which cannot start while the browser's worker
+// that owns the module is blocked in a step (sim/thread_budget.h). gl_pool_threads() is what
+// this module can use, gl_default_threads() the count to use when none is asked for. Thread
+// counts above the hardware's are allowed (the thesis ran 2-4; the results never depend on the
+// count). The page's copy (MAX_THREADS, web/src/sim/gaitlab-wasm.ts) is checked against this
+// line by a test and against gl_max_threads() when the module loads; native/CMakeLists.txt
+// reads it too.
+#define GL_MAX_THREADS 16
 
 #ifdef __cplusplus
 extern "C" {
@@ -79,12 +84,20 @@ GL_EXPORT const char* gl_version(void);
 // GL_MAX_THREADS, for JavaScript.
 GL_EXPORT int gl_max_threads(void);
 
+// Most threads one simulation, search or benchmark point can use in this module: natively
+// GL_MAX_THREADS, in the WASM build 1 + the workers of its pthread pool (sized when it loaded).
+GL_EXPORT int gl_pool_threads(void);
+
+// The thread count to use when none is asked for: the device's logical cores, at most
+// gl_pool_threads().
+GL_EXPORT int gl_default_threads(void);
+
 // ---- Simulation ----------------------------------------------------------------------------
 
 // A new simulation: flat ground (gl_sim_set_terrain changes it), nothing on it. `threads` is the
 // size of the thread pool used for per-character work (clamped). `seed` drives every random
 // choice of the scene. NULL when the WASM build cannot afford it: its heap is nearly full, or
-// its fixed pthread pool (GL_MAX_THREADS - 1 workers, shared by every simulation, search and
+// its pthread pool (gl_pool_threads() - 1 workers, shared by every simulation, search and
 // benchmark point of the module) has fewer than threads - 1 free.
 GL_EXPORT void* gl_sim_create(int threads, uint32_t seed);
 GL_EXPORT void gl_sim_destroy(void* sim);  // NULL is allowed
@@ -380,7 +393,7 @@ typedef struct gl_bench_settings {
   int32_t mode;        // GL_MODE_*; default GL_MODE_SERIAL
   int32_t steps;       // fixed steps per run, [1, 100000]; default 800 (the thesis's)
   int32_t runs;        // [1, 1000], steps × runs <= 2,000,000; default 20 (the thesis's)
-  int32_t shards;      // physics shards, [1, 64]; default 12
+  int32_t shards;      // physics shards, [1, 64]; default 16 (sim::kCrowdShards)
   uint32_t seed;       // default 1
   double spacing;      // metres between grid neighbours, >= 2.5; default 4
   int32_t frames;      // non-zero keeps per-frame statistics; default 0
@@ -401,7 +414,7 @@ GL_EXPORT const char* gl_bench_point(const gl_bench_settings* settings);
 // another engine to build the same ragdoll; static. NULL for another kind.
 GL_EXPORT const char* gl_morphology_json(int kind);
 // `characters` (1 to 400) ragdolls of `kind` on the crowd benchmark's grid, stepped by `threads`
-// threads (clamped to [1, GL_MAX_THREADS]). NULL on refusal.
+// threads (clamped to [1, GL_MAX_THREADS]; refused above gl_pool_threads()). NULL on refusal.
 GL_EXPORT void* gl_peer_scene_create(int kind, int characters, int threads);
 GL_EXPORT void gl_peer_scene_destroy(void* scene);
 // `steps` (0 to 12000, as gl_sim_step) fixed steps of 1/120 s. GL_OK, or GL_ERR_ARGUMENT.

@@ -30,6 +30,7 @@
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
 #include "optimize/settings.h"
+#include "sim/thread_budget.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::api {
@@ -77,7 +78,8 @@ const char* kOptimizeUsage =
     "  --generations N               1 to 1000000 (default 20)\n"
     "  --candidates K                evaluations per generation, 2 to 1000 (default 10)\n"
     "  --seed S                      0 to 4294967295 (default 1): the same seed, the same search\n"
-    "  --threads T                   evaluations in parallel, 1 to 64 (default 1)\n"
+    "  --threads T                   evaluations in parallel, 1 to 16 (default: every core of the\n"
+    "                                device; the result does not depend on it)\n"
     "  --out FILE                    where the best gait is written (required); checked before\n"
     "                                the search starts, written to a temporary file beside it\n"
     "                                and renamed, so a previous FILE is replaced whole or not at all\n"
@@ -356,20 +358,19 @@ int optimizeCommand(int argc, char** argv) {
   const std::string method = o.values.count("--method") ? o.values["--method"] : "greedy";
   if (!optimize::parseMethod(method, &search.method))
     return api::usageError("optimize", "--method: '" + method + "' is not greedy or cmaes");
-  long long generations = 20, candidates = 10, seed = 1, threads = 1;
+  long long generations = 20, candidates = 10, seed = 1, threads = sim::defaultThreads();
   if (!o.integer("--generations", 1, 1000000, 20, &generations) ||
       !o.integer("--candidates", optimize::kMinCandidates, optimize::kMaxCandidates, 10, &candidates) ||
       !o.integer("--seed", 0, kMaxSeed, 1, &seed) ||
-      !o.integer("--threads", 1, 64, 1, &threads) ||
+      !o.integer("--threads", 1, sim::kMaxThreads, sim::defaultThreads(), &threads) ||
       !o.number("--seconds", 0.5, 120, search.objective.seconds, &search.objective.seconds))
     return api::usageError("optimize", o.error);
   search.candidates = static_cast<int>(candidates);
   search.seed = static_cast<uint64_t>(seed);
   search.threads = static_cast<int>(threads);
-#ifdef __EMSCRIPTEN__
-  // The WASM build pre-starts a fixed pthread pool for GL_MAX_THREADS threads (c_api.h).
-  search.threads = std::min(search.threads, GL_MAX_THREADS);
-#endif
+  // The WASM build's pthread pool is sized from the device's cores (sim/thread_budget.h); a
+  // search on more threads than it holds would abort the module. Natively this is kMaxThreads.
+  search.threads = std::min(search.threads, sim::maxThreads());
   const auto given = [&](const char* name) {
     return o.values.count(name) ? std::optional<std::string>(o.values[name]) : std::nullopt;
   };

@@ -2,6 +2,7 @@
 
 #include "api/c_api.h"
 #include "api/options.h"
+#include "sim/thread_budget.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -32,12 +33,16 @@ const char* kBenchUsage =
     "\n"
     "  --legs 2|4|mixed[,...]        bipeds, quadrupeds, or both alternating (default 2)\n"
     "  --characters LIST             crowd sizes, e.g. 1-100:10 or 1,50,100 (default 1-100:11)\n"
-    "  --threads LIST                thread counts, e.g. 1,2,3,4 (default 1,2)\n"
+    "  --threads LIST                thread counts, e.g. 1,2,3,4, up to 16 (default 1 and every\n"
+    "                                core of the device, e.g. 1,8; in WebAssembly at most the\n"
+    "                                module's pthread pool, sized from the cores when it loads)\n"
     "  --mode serial|controller|full[,...]   execution modes (default serial,controller,full)\n"
     "                                serial runs with one thread whatever --threads says\n"
     "  --steps N                     fixed steps per run (default 800, as the thesis)\n"
     "  --runs N                      runs per point (default 20, as the thesis)\n"
-    "  --shards N                    physics shards: independent Bullet worlds (default 12)\n"
+    "  --shards N                    physics shards: independent Bullet worlds, 1 to 64; the\n"
+    "                                result does not depend on the threads (default 16, fewer\n"
+    "                                for a crowd of fewer: one each)\n"
     "  --spacing M                   metres between grid neighbours (default 4)\n"
     "  --seed N                      0 to 4294967295 (default 1)\n"
     "  --frames                      include per-frame mean/sd (thesis Figures 5.1, 5.2)\n"
@@ -80,6 +85,12 @@ bool parseList(const std::string& text, long lo, long hi, std::vector<int>* out,
     if (out->back() != b) out->push_back(static_cast<int>(b));
   }
   return true;
+}
+
+// The default --threads: one thread (the thesis's baseline) and every core of the device.
+std::string defaultThreadList() {
+  const int all = sim::defaultThreads();
+  return all == 1 ? "1" : "1," + std::to_string(all);
 }
 
 std::string utcNow() {
@@ -257,7 +268,7 @@ int runBenchCli(int argc, char** argv) {
     return it == o.values.end() ? std::string(fallback) : it->second;
   };
   const std::string legsText = text("--legs", "2"), charactersText = text("--characters", "1-100:11"),
-                    threadsText = text("--threads", "1,2"),
+                    threadsText = text("--threads", defaultThreadList().c_str()),
                     modesText = text("--mode", "serial,controller,full");
   long long steps, runs, shards, seed;
   if (!o.integer("--steps", 1, 100000, base.steps, &steps) ||
@@ -300,9 +311,12 @@ int runBenchCli(int argc, char** argv) {
       return benchError("--characters: " + std::to_string(largest) + " " + (l == sim::kMixed ? std::string("mixed characters") : l == 2 ? "bipeds" : "quadrupeds") +
                         " is more than a simulation holds (" + std::to_string(most) + ")");
   }
-  // The WASM build pre-starts a pthread pool for GL_MAX_THREADS threads (c_api.h); natively the
-  // same limit keeps the two comparable.
-  if (!parseList(threadsText, 1, GL_MAX_THREADS, &threads, &error)) return benchError("--threads: " + error);
+  // The WASM build pre-starts a pthread pool sized from the device's cores (sim/thread_budget.h):
+  // a point on more threads than it holds would abort the module, so it is refused here.
+  // Natively the limit is GL_MAX_THREADS, as for the page on the largest devices.
+  if (!parseList(threadsText, 1, sim::maxThreads(), &threads, &error))
+    return benchError("--threads: " + error + " (this module's pthread pool serves at most " +
+                      std::to_string(sim::maxThreads()) + " threads)");
 
   // The grid. Serial mode ignores the thread count, so it is measured once, with 1 thread.
   std::vector<sim::PointSpec> grid;

@@ -9,7 +9,9 @@
 namespace gaitlab::api {
 
 struct SimHandle {
-  SimHandle(int threads, uint32_t seed) : simulation(threads, seed) {}
+  // The demo's crowd grows at run time: its physics is split as the benchmark's crowds are
+  // (sim::kCrowdShards, physics_shards.h), each character added to the least populated shard.
+  SimHandle(int threads, uint32_t seed) : simulation(threads, seed, sim::kCrowdShards) {}
   sim::Simulation simulation;
   std::string text;  // gl_sim_state_hash's and gl_sim_get_params's result
 };

@@ -31,6 +31,9 @@ constexpr int64_t kSolverBytesPerBody = 8 * 1024;
 // A new simulation before anything is in it: its render buffer (16384 bodies, 2.5 MB), the
 // Bullet world and its ground, the thread pool's threads (stacks included): 6.7 MB measured.
 constexpr int64_t kSimulationBytes = 8 * 1024 * 1024;
+// And each of its pool's workers beyond the first: a pthread's stack comes from the same heap
+// (Emscripten's default, 2 MiB), and the pool may now hold up to 15 of them (sim/thread_budget.h).
+constexpr int64_t kWorkerStackBytes = 2 * 1024 * 1024;
 // Heap kept free for everything a running page needs besides the scene: a step's scratch
 // buffers, gait files being parsed, the optimiser's candidates, the strings the ABI returns.
 constexpr int64_t kHeapReserve = 24 * 1024 * 1024;

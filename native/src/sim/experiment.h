@@ -34,8 +34,8 @@ struct PointSpec {
   int steps = 800;
   int runs = 20;
   // Physics shards (simulation.h). Fixed by the experiment, not by the thread count, so that
-  // every mode and thread count of a point simulates exactly the same thing.
-  int shards = 12;
+  // every mode and thread count of a point simulates exactly the same thing (physics_shards.h).
+  int shards = kCrowdShards;
   double spacing = 4.0;  // metres between neighbours on the grid: well apart, no overlap
   uint32_t seed = 1;
   bool frames = false;  // keep the per-frame statistics

@@ -10,6 +10,7 @@
 
 #include "sim/experiment.h"
 #include "sim/simulation.h"
+#include "sim/thread_budget.h"
 #include "sim/thread_pool.h"
 
 using gaitlab::sim::Crowd;
@@ -120,10 +121,12 @@ TEST(Modes, TheBenchmarkCrowdWalksOutOfStep) {
 }
 
 TEST(Modes, SameStateHashForEveryModeAndThreadCount) {
-  // A mixed crowd with props thrown in, so that props cross between shards too.
+  // A mixed crowd with props thrown in, so that props cross between shards too. Thread counts
+  // up to the most a simulation uses (GL_MAX_THREADS, sim::kMaxThreads), above the cores of this
+  // machine and of most: every thread count must compute the same scene.
   std::string reference;
   for (Mode mode : {Mode::Serial, Mode::Controller, Mode::Full}) {
-    for (int threads = 1; threads <= 4; ++threads) {
+    for (int threads : {1, 2, 3, 8, gaitlab::sim::kMaxThreads}) {
       Simulation sim(threads, 9, 3);
       sim.crowdScene(Crowd::Mixed, 7, 2.5);
       sim.spawnBox(1.0, 0.5, 0.3);

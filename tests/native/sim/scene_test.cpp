@@ -183,7 +183,7 @@ std::string replayThroughTheCAbi(int threads, uint32_t seed) {
 
 // The same run through the C++ API, stepped in whole stretches between commands.
 std::string replayThroughTheCppApi(int threads, uint32_t seed, Mode mode) {
-  Simulation sim(threads, seed);
+  Simulation sim(threads, seed, gaitlab::sim::kCrowdShards);  // as the C ABI makes the demo's
   sim.setMode(mode);
   gaitlab::gait::Goal lastGoal[2] = {{Simulation::cruiseSpeed(Character::Biped), 0},
                                      {Simulation::cruiseSpeed(Character::Quadruped), 0}};

@@ -2,7 +2,10 @@
 // published, and the state hash is the same for the same inputs whatever the thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
+#include <vector>
 
 #include "api/c_api.h"
 #include "sim/simulation.h"
@@ -80,4 +83,18 @@ TEST(CApi, ThreadCountIsClampedToWhatTheWasmPoolCanStart) {
   s = gl_sim_create(0, 1);
   EXPECT_EQ(gl_sim_threads(s), 1);
   gl_sim_destroy(s);
+}
+
+TEST(CApi, NativelyEveryThreadCountUpToTheLimitIsServedAndTheDefaultIsEveryCore) {
+  // Natively threads are made on demand: no pool to run out of (sim/thread_budget.h).
+  EXPECT_EQ(gl_pool_threads(), GL_MAX_THREADS);
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  EXPECT_EQ(gl_default_threads(), std::clamp(cores, 1, GL_MAX_THREADS));
+  std::vector<void*> sims;
+  for (int i = 0; i < 3; ++i) sims.push_back(gl_sim_create(GL_MAX_THREADS, 1));
+  for (void* s : sims) {
+    ASSERT_NE(s, nullptr) << gl_last_error();
+    EXPECT_EQ(gl_sim_threads(s), GL_MAX_THREADS);
+    gl_sim_destroy(s);
+  }
 }

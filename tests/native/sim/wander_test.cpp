@@ -70,7 +70,7 @@ TEST(Wander, AWanderingCrowdStaysInItsArenaAndKeepsWalking) {
 TEST(Wander, ARunReplaysTheSameHoweverItIsStepped) {
   // Wandering steers at fixed step indices, so one batch of 250 steps and 250 single steps give
   // the same state; the C ABI's call gives the same as the C++ API's.
-  Simulation a(1, 3);
+  Simulation a(1, 3, gaitlab::sim::kCrowdShards);  // as gl_sim_create makes it
   a.demoScene(6);
   a.setWander(-1, 10);
   a.step(250);
@@ -80,7 +80,7 @@ TEST(Wander, ARunReplaysTheSameHoweverItIsStepped) {
   for (int s = 0; s < 250; ++s) gl_sim_step(b, 1);
   EXPECT_EQ(a.stateHash(), std::string(gl_sim_state_hash(b)));
   // Without wandering the run differs (the wanderers turned).
-  Simulation c(1, 3);
+  Simulation c(1, 3, gaitlab::sim::kCrowdShards);
   c.demoScene(6);
   c.step(250);
   EXPECT_NE(a.stateHash(), c.stateHash());

@@ -6,7 +6,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { ERR, INFO, Kind, LEGS, MAX_THREADS, METHOD, MODE, STRUCTS, TERRAIN } from '../../../web/src/sim/gaitlab-wasm';
+import { CROWD_SHARDS, ERR, INFO, Kind, LEGS, MAX_THREADS, METHOD, MODE, STRUCTS, TERRAIN } from '../../../web/src/sim/gaitlab-wasm';
 import { MAX_THREADS as PAGE_MAX_THREADS } from '../../../web/src/sim/protocol';
 import { SEARCH_FIELDS } from '../../../web/src/optimize/options';
 
@@ -55,6 +55,11 @@ describe('the binding of c_api.h', () => {
     expect(Number(define?.[1])).toBe(MAX_THREADS);
     expect(PAGE_MAX_THREADS).toBe(MAX_THREADS);
     expect(SEARCH_FIELDS.threads.max).toBe(MAX_THREADS);
+  });
+
+  it('splits a crowd\'s physics over as many shards as the simulation does', () => {
+    const shards = fs.readFileSync(path.join(repoDir, 'native/src/sim/physics_shards.h'), 'utf8');
+    expect(Number(/^constexpr int kCrowdShards = (\d+);$/m.exec(shards)?.[1])).toBe(CROWD_SHARDS);
   });
 
   it('has the header\'s error codes and enum values', () => {

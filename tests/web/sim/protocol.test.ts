@@ -6,13 +6,15 @@ import { RateMeter } from '../../../web/src/ui/rate-meter';
 const defaults: SimOptions = { wasmUrl: '/wasm/gaitlab.mjs', threads: 2, seed: 1, characters: 6 };
 
 describe('defaultThreads', () => {
-  it('uses one thread per core, at most the module\'s MAX_THREADS (5) and at least 1', () => {
-    expect(MAX_THREADS).toBe(5);
+  it('uses one thread per core, at most the module\'s MAX_THREADS (16) and at least 1', () => {
+    expect(MAX_THREADS).toBe(16);
     expect(defaultThreads(1)).toBe(1);
     expect(defaultThreads(2)).toBe(2);
     expect(defaultThreads(4)).toBe(4);
     expect(defaultThreads(5)).toBe(5);
-    expect(defaultThreads(16)).toBe(MAX_THREADS);
+    expect(defaultThreads(8)).toBe(8);
+    expect(defaultThreads(16)).toBe(16);
+    expect(defaultThreads(64)).toBe(MAX_THREADS);
     expect(defaultThreads(0)).toBe(1);
     expect(defaultThreads(undefined)).toBe(1);
     expect(defaultThreads(Number.NaN)).toBe(1);
@@ -37,7 +39,7 @@ describe('simOptionsFromQuery', () => {
     const notes: string[] = [];
     expect(simOptionsFromQuery('?threads=0&seed=-3&characters=2.5', defaults, notes)).toEqual({ ...defaults, threads: 1, seed: 0, characters: 3 });
     expect(notes).toEqual([
-      '?threads=0 is not a whole number in [1, 5]: using 1',
+      '?threads=0 is not a whole number in [1, 16]: using 1',
       '?seed=-3 is not a whole number in [0, 4294967295]: using 0',
       '?characters=2.5 is not a whole number in [0, 256]: using 3',
     ]);

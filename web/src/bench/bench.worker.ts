@@ -2,7 +2,7 @@
 // pool) and runs the experiment point by point through gl_bench_point, the code `gaitlab bench`
 // runs natively (native/src/sim/experiment.cpp). Like the sim worker it is the module's "main
 // thread": a point blocks it while the pool's threads work.
-import { bench, LEGS, loadGaitlab, MODE, type GaitlabModule } from '../sim/gaitlab-wasm';
+import { bench, CROWD_SHARDS, LEGS, loadGaitlab, MODE, type GaitlabModule } from '../sim/gaitlab-wasm';
 import { searchCapacity } from './capacity';
 import type { BenchCommand, BenchEvent } from './protocol';
 
@@ -18,16 +18,22 @@ let cancelled = false;
 
 const yieldToMessages = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
 
-/** The module, loaded once for every run and capacity search, its aborts posted to the page. */
-const loadModule = (wasmUrl: string) =>
+/**
+ * The module, loaded once for every run and capacity search, its aborts posted to the page. Its
+ * pthread pool serves every core, or the first command's thread counts if they ask for more (the
+ * page measures counts above the hardware's too, and flags them); a later point on more threads
+ * than that is refused by gl_bench_point.
+ */
+const loadModule = (wasmUrl: string, threads: number) =>
   loadGaitlab(wasmUrl, {
     printErr: (text) => console.warn(`[gaitlab] ${text}`),
     onAbort: (what) => post({ type: 'error', message: `the WASM module aborted: ${String(what)}` }),
+    poolThreads: Math.max(navigator.hardwareConcurrency || 1, threads),
   });
 
 async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<void> {
   if (!crossOriginIsolated) throw new Error('the page is not cross-origin isolated: no WASM threads');
-  module ??= await loadModule(command.wasmUrl);
+  module ??= await loadModule(command.wasmUrl, Math.max(1, ...command.grid.map((p) => p.threads)));
   const m = module;
   post({ type: 'machine', machine: bench.machine(m) });
   const { inputs } = command;
@@ -76,7 +82,7 @@ async function run(command: Extract<BenchCommand, { type: 'run' }>): Promise<voi
  */
 async function capacityRun(command: Extract<BenchCommand, { type: 'capacity' }>): Promise<void> {
   if (!crossOriginIsolated) throw new Error('the page is not cross-origin isolated: no WASM threads');
-  module ??= await loadModule(command.wasmUrl);
+  module ??= await loadModule(command.wasmUrl, command.threads);
   const m = module;
   post({ type: 'machine', machine: bench.machine(m) });
   for (const legs of [2, 4] as const) {
@@ -94,7 +100,7 @@ async function capacityRun(command: Extract<BenchCommand, { type: 'capacity' }>)
         post({ type: 'status', message: `the module's memory holds no more than ${bench.maxCharacters(m, LEGS[legs])} ${legs === 2 ? 'bipeds' : 'quadrupeds'} now` });
         return Infinity;
       }
-      const point = bench.point(m, { legs: LEGS[legs], characters, threads: command.threads, mode: MODE.full, steps: 240, runs: 1, shards: 12, spacing: 4, seed: 1, frames: 0 });
+      const point = bench.point(m, { legs: LEGS[legs], characters, threads: command.threads, mode: MODE.full, steps: 240, runs: 1, shards: CROWD_SHARDS, spacing: 4, seed: 1, frames: 0 });
       const stepMs = (point.step_ms as { mean: number }).mean;
       post({ type: 'capacityProbe', legs, characters, stepMs });
       return stepMs;

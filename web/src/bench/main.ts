@@ -15,7 +15,7 @@ import {
   type BenchDocument, type Point, type TimeField,
 } from '../../../bench/lib/analysis.mjs';
 import { buildGrid, parseList, pointCost, type BenchEvent, type BenchInputs, type PointSpec } from './protocol';
-import { MAX_THREADS } from '../sim/gaitlab-wasm';
+import { CROWD_SHARDS, MAX_THREADS } from '../sim/gaitlab-wasm';
 
 interface Hook {
   state: 'idle' | 'running' | 'done' | 'cancelled' | 'error';
@@ -157,8 +157,8 @@ function readInputs(): BenchInputs {
   return {
     legs, modes,
     characters: parseList(charactersField.input.value, 1, 2000),
-    threads: parseList(threadsField.input.value, 1, 5),
-    steps: steps[0], runs: runs[0], shards: 12, spacing_m: 4, seed: 1, step_hz: 120,
+    threads: parseList(threadsField.input.value, 1, MAX_THREADS),
+    steps: steps[0], runs: runs[0], shards: CROWD_SHARDS, spacing_m: 4, seed: 1, step_hz: 120,
     frames: framesBox.checked,
   };
 }

@@ -28,6 +28,8 @@ export interface GaitlabModule {
   _gl_last_error(): number;
   _gl_version(): number;
   _gl_max_threads(): number;
+  _gl_pool_threads(): number;
+  _gl_default_threads(): number;
   // Simulation.
   _gl_sim_create(threads: number, seed: number): number;
   _gl_sim_destroy(sim: number): void;
@@ -91,9 +93,17 @@ export interface GaitlabModule {
  * Most threads a simulation, a search or a benchmark point uses: GL_MAX_THREADS of c_api.h (why
  * there is a limit is said there). Written out here because the page checks its options before
  * the module loads; tests/web/sim/gaitlab-wasm.test.ts checks it against the header, and
- * loadGaitlab against the module's gl_max_threads().
+ * loadGaitlab against the module's gl_max_threads(). A loaded module serves at most
+ * poolThreads(module): its pthread pool is sized from the device's cores when it loads.
  */
-export const MAX_THREADS = 5;
+export const MAX_THREADS = 16;
+
+/**
+ * Physics shards of a crowd (sim::kCrowdShards, native/src/sim/physics_shards.h, which says why
+ * 16): the benchmark's and the capacity search's crowds are split over this many Bullet worlds,
+ * as the demo's is. tests/web/sim/gaitlab-wasm.test.ts checks it against the header.
+ */
+export const CROWD_SHARDS = 16;
 
 /** GL_ERR_* of c_api.h: what a refused int-returning call returns. */
 export const ERR = { argument: -1, kind: -2, noCharacter: -3, invalidParams: -4, full: -5 } as const;
@@ -247,6 +257,11 @@ export interface GaitlabModuleOptions {
   printErr?: (text: string) => void;
   /** Called when the module aborts, on any of its threads (a pthread's abort is relayed). */
   onAbort?: (what: unknown) => void;
+  /**
+   * The threads its pthread pool serves (2 to MAX_THREADS), instead of the device's cores
+   * (navigator.hardwareConcurrency): native/src/api/pthread_pool.pre.js.in.
+   */
+  poolThreads?: number;
 }
 
 export type GaitlabFactory = (options?: GaitlabModuleOptions) => Promise<GaitlabModule>;
@@ -270,6 +285,14 @@ export async function loadGaitlab(url: string, options: GaitlabModuleOptions = {
     throw new Error(`the WASM module allows ${module._gl_max_threads()} threads, the page ${MAX_THREADS}: rebuild both (npm run build)`);
   }
   return module;
+}
+
+/**
+ * Most threads one simulation, search or benchmark point can use in this module (gl_pool_threads):
+ * 1 + the workers of its pthread pool, sized from the device when the module loaded.
+ */
+export function poolThreads(module: GaitlabModule): number {
+  return module._gl_pool_threads();
 }
 
 /** The library version string. */

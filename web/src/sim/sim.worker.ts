@@ -21,6 +21,7 @@ import {
   loadGaitlab,
   normalizeGait,
   optimizerSettingsJson,
+  poolThreads,
   presetJson,
   schemaJson,
   Simulation,
@@ -186,7 +187,9 @@ class WorkerScene {
   private newScene(): void {
     const { module, options } = this;
     // The previous simulation is gone by now (see 'released'): its pthreads are back in the pool.
-    const sim = (this.sim = new Simulation(module, options.threads, options.seed));
+    // At most what the module's pthread pool serves: it is sized from the same
+    // navigator.hardwareConcurrency as the page's default, but `?threads=` may ask for more.
+    const sim = (this.sim = new Simulation(module, Math.min(options.threads, poolThreads(module)), options.seed));
     // The ground first, so that the characters are spawned standing on it.
     if (this.terrain !== 'flat') sim.setTerrain(this.terrain);
     this.pending = [];

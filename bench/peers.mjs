@@ -23,7 +23,7 @@ import { createRequire } from 'node:module';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { describePoint, JOLT_SKIP, measurePoint, peerEngines, peerGrid, TABLE_HEAD, tableRows, warmUp } from './peers/comparison.mjs';
+import { describePoint, JOLT_SKIP, measurePoint, peerEngines, peerGrid, TABLE_HEAD, tableGrid, tableRows, warmUp } from './peers/comparison.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..');
@@ -136,9 +136,9 @@ for (const r of ['wasm-node', 'wasm-browser']) {
     '',
     `| ${TABLE_HEAD.join(' | ')} |`,
     `|${TABLE_HEAD.map(() => '---').join('|')}|`,
-    ...tableRows(points, peerGrid(info.grid)).map((row) => `| ${row.join(' | ')} |`),
+    ...tableRows(points, tableGrid(info.grid)).map((row) => `| ${row.join(' | ')} |`),
     '',
-    ...(points.some((p) => p.skipped) ? [`—: Jolt ${JOLT_SKIP}.`, ''] : []));
+    ...[...new Set(points.filter((p) => p.skipped).map((p) => `—: ${p.engine === 'gaitlab' ? 'gaitlab' : 'Jolt'} ${p.skipped}${p.skipped === JOLT_SKIP ? '' : ` (${p.legs === 4 ? 'quadrupeds' : 'bipeds'} ${p.characters} × ${p.threads})`}.`))], '');
 }
 mkdirSync(out, { recursive: true });
 writeFileSync(file, JSON.stringify(doc, null, 2) + '\n');

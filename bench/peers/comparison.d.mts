@@ -13,8 +13,12 @@ export interface PeerPoint {
   ms_max?: number;
   root_height_m?: number;
   skipped?: string;
+  /** Rounds run, when fewer than asked, and why. */
+  rounds?: number;
+  refused?: string;
 }
 export interface PeerEngine {
+  make(legs: 2 | 4, characters: number, threads: number): { step(steps: number): void; rootHeight(): number; destroy(): void };
   name: PeerPoint['engine'];
   label: string;
   runs(legs: 2 | 4, characters: number, threads: number): boolean;
@@ -28,5 +32,6 @@ export function peerEngines(modules: PeerModules, options?: { joltSettings?: Rec
 export function warmUp(engines: PeerEngine[], legs: Array<2 | 4>, threads: number[]): void;
 export function measurePoint(engines: PeerEngine[], point: PeerPointSpec, settings: PeerSettings): PeerPoint[];
 export function peerGrid(grid: PeerGrid): PeerPointSpec[];
+export function tableGrid(grid: PeerGrid): PeerPointSpec[];
 export function describePoint(point: PeerPoint): string;
 export function tableRows(points: PeerPoint[], grid: PeerPointSpec[]): string[][];

@@ -6,7 +6,7 @@
 // URL parameters preset it, e.g. ?peerLegs=4&peerCharacters=20,100&peerThreads=1,2&peerSteps=120
 // &peerRounds=3&peerAutorun=1. `window.gaitlabBench.peers` is its read-only hook for automation
 // (bench/peers/browser.mjs, tests/e2e): { state, status, error, run }.
-import { TABLE_HEAD, peerGrid, tableRows, type PeerGrid, type PeerPoint, type PeerSettings } from '../../../bench/peers/comparison.mjs';
+import { TABLE_HEAD, peerGrid, tableGrid, tableRows, type PeerGrid, type PeerPoint, type PeerSettings } from '../../../bench/peers/comparison.mjs';
 import { parseList } from './protocol';
 import type { PeersEvent } from './peers-protocol';
 
@@ -56,12 +56,12 @@ export function peersSection(hook: PeersHook, params: URLSearchParams): HTMLElem
     if (!hook.run) return;
     // The points measured so far, in the grid's order.
     const points = hook.run.points;
-    const measured = peerGrid(hook.run.grid).filter((g) => points.some((p) => p.legs === g.legs && p.characters === g.characters && p.threads === g.threads));
+    const measured = tableGrid(hook.run.grid).filter((g) => points.some((p) => p.legs === g.legs && p.characters === g.characters && p.threads === g.threads));
     const t = el('table');
     t.append(el('tr', {}, ...TABLE_HEAD.map((h, i) => el('th', { className: i < 1 ? 'text' : '' }, h))));
     for (const r of tableRows(points, measured)) t.append(el('tr', {}, ...r.map((v, i) => el('td', { className: i < 1 ? 'text' : '' }, v))));
-    const skipped = hook.run.points.find((p) => p.skipped);
-    results.replaceChildren(t, ...(skipped ? [el('p', { className: 'lead' }, `—: Jolt ${skipped.skipped}.`)] : []));
+    const notes = [...new Set(points.filter((p) => p.skipped).map((p) => `—: ${p.engine === 'gaitlab' ? 'gaitlab' : 'Jolt'} ${p.skipped}.`))];
+    results.replaceChildren(t, ...notes.map((n) => el('p', { className: 'lead' }, n)));
   };
   const finish = (state: PeersHook['state'], text: string) => {
     hook.state = state;

@@ -21,6 +21,15 @@ export const wasmDir = process.env.GAITLAB_WASM_DIR
 /** The browser build's files. The Node build (gaitlab-node.*) is not served. */
 const wasmFiles = ['gaitlab.mjs', 'gaitlab.wasm', 'gaitlab.worker.js'];
 
+/**
+ * The jolt-physics package's two builds that the performance page's peer section compares with
+ * (web/src/bench/peers.ts): the SIMD multithreaded one and the default one. Served as they are
+ * under /jolt, like gaitlab's module: each finds its .wasm (and the multithreaded one its pthread
+ * workers, itself) relative to its own URL, which bundling would break.
+ */
+const joltDir = path.join(repoDir, 'node_modules', 'jolt-physics', 'dist');
+const joltFiles = ['jolt-physics.multithread.wasm.js', 'jolt-physics.multithread.wasm.wasm', 'jolt-physics.wasm.js', 'jolt-physics.wasm.wasm'];
+
 export const isolationHeaders: Record<string, string> = {
   'Cross-Origin-Opener-Policy': 'same-origin',
   'Cross-Origin-Embedder-Policy': 'require-corp',
@@ -34,17 +43,18 @@ const mimeTypes: Record<string, string> = {
 };
 
 /**
- * Serves `/wasm/*` from build/wasm in dev, and copies those files to `<outDir>/wasm/` in a build.
- * The module is loaded at run time by the sim worker (a dynamic import Vite must not touch), so
- * it is not part of the module graph; this plugin is what makes it reachable.
+ * Serves `/wasm/*` from build/wasm in dev, and copies those files to `<outDir>/wasm/` in a build;
+ * the same for `/jolt/*` (joltFiles). The module is loaded at run time by the sim worker (a
+ * dynamic import Vite must not touch), so it is not part of the module graph; this plugin is what
+ * makes it reachable.
  */
 function gaitlabWasm(): Plugin {
-  const serveWasm: Connect.NextHandleFunction = (req, res, next) => {
-    // Mounted at /wasm, so req.url is "/gaitlab.mjs" (plus maybe a query string).
+  const serveFrom = (dir: string): Connect.NextHandleFunction => (req, res, next) => {
+    // Mounted at /wasm (or /jolt), so req.url is "/gaitlab.mjs" (plus maybe a query string).
     const name = decodeURIComponent((req.url ?? '').split('?')[0]).replace(/^\/+/, '');
     const type = mimeTypes[path.extname(name)];
     if (!type || name.includes('/') || name.includes('\\')) return next();
-    const file = path.join(wasmDir, name);
+    const file = path.join(dir, name);
     fs.stat(file, (statError, stat) => {
       if (statError || !stat.isFile()) {
         // A plain 404 with the reason, rather than falling through to an HTML page that the
@@ -68,15 +78,18 @@ function gaitlabWasm(): Plugin {
   return {
     name: 'gaitlab-wasm',
     configureServer(server) {
-      server.middlewares.use('/wasm', serveWasm);
+      server.middlewares.use('/wasm', serveFrom(wasmDir));
+      server.middlewares.use('/jolt', serveFrom(joltDir));
     },
     generateBundle() {
-      for (const name of wasmFiles) {
-        const file = path.join(wasmDir, name);
-        if (!fs.existsSync(file)) {
-          this.error(`gaitlab: ${file} does not exist; build the WASM module before the web page`);
+      for (const [dir, files, folder] of [[wasmDir, wasmFiles, 'wasm'], [joltDir, joltFiles, 'jolt']] as const) {
+        for (const name of files) {
+          const file = path.join(dir, name);
+          if (!fs.existsSync(file)) {
+            this.error(`gaitlab: ${file} does not exist; build the WASM module (and install the packages) before the web page`);
+          }
+          this.emitFile({ type: 'asset', fileName: `${folder}/${name}`, source: fs.readFileSync(file) });
         }
-        this.emitFile({ type: 'asset', fileName: `wasm/${name}`, source: fs.readFileSync(file) });
       }
     },
   };

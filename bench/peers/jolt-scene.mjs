@@ -19,13 +19,22 @@
 //
 // The solver iteration counts are Jolt's defaults (10 velocity, 2 position steps); gaitlab uses
 // Bullet's 10 sequential-impulse iterations (physics/world.h).
+//
+// The ragdolls never sleep, as gaitlab's characters never do (physics/world.cpp disables Bullet's
+// deactivation): with Jolt's default (sleep after 0.5 s below 0.03 m/s) the standing quadrupeds
+// all fell asleep about 1.05 s into the scene, inside the benchmark's timed window, and every
+// step after that cost Jolt nothing.
+//
+// `physicsSettings` overrides fields of Jolt's PhysicsSettings (Jolt/Physics/PhysicsSettings.h),
+// e.g. { mNumVelocitySteps: 5, mUseLargeIslandSplitter: false }: the peer benchmark's --jolt
+// option, for measuring what Jolt's design choices are worth.
 
 const GROUND = 0;
 const MOVING = 1;
 
 /** A Jolt physics system holding `characters` ragdolls of `morphology`, stepped with `threads`. */
 export class JoltScene {
-  constructor(Jolt, morphology, characters, threads, spacing = 2.5) {
+  constructor(Jolt, morphology, characters, threads, { spacing = 2.5, physicsSettings = {} } = {}) {
     this.Jolt = Jolt;
     const settings = new Jolt.JoltSettings();
     settings.mMaxWorkerThreads = Math.max(0, threads - 1);  // the caller works too
@@ -45,6 +54,14 @@ export class JoltScene {
     Jolt.destroy(settings);
     this.system = this.jolt.GetPhysicsSystem();
     this.system.SetGravity(new Jolt.Vec3(0, -9.81, 0));
+    if (Object.keys(physicsSettings).length) {
+      const ps = this.system.GetPhysicsSettings();
+      for (const [key, value] of Object.entries(physicsSettings)) {
+        if (!(key in ps)) throw new Error(`Jolt's PhysicsSettings has no field ${key}`);
+        ps[key] = value;
+      }
+      this.system.SetPhysicsSettings(ps);
+    }
     this.bodies = this.system.GetBodyInterface();
 
     // The ground: a large static box whose top is y = 0 (friction 1, as gaitlab's plane).
@@ -76,6 +93,7 @@ export class JoltScene {
       c.mLinearDamping = 0;
       c.mAngularDamping = 0;
       c.mMaxAngularVelocity = 1e4;
+      c.mAllowSleeping = false;
       // Box inertia raised to the armature, as physics/character.cpp does.
       const box = (a, b) => (s.mass / 3) * (a * a + b * b);
       const inertia = [box(hy, hz), box(hx, hz), box(hx, hy)].map((v) => Math.max(v, m.armature));

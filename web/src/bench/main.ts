@@ -16,6 +16,7 @@ import {
 } from '../../../bench/lib/analysis.mjs';
 import { buildGrid, parseList, pointCost, type BenchEvent, type BenchInputs, type PointSpec } from './protocol';
 import { CROWD_SHARDS, MAX_THREADS } from '../sim/gaitlab-wasm';
+import { peersSection, type PeersHook } from './peers';
 
 interface Hook {
   state: 'idle' | 'running' | 'done' | 'cancelled' | 'error';
@@ -23,13 +24,16 @@ interface Hook {
   error: string | null;
   /** "How many can this device run?": per type, the capacity found (null until measured). */
   capacity: { state: 'idle' | 'running' | 'done' | 'error'; biped: number | null; quadruped: number | null; seconds: number };
+  /** The peer section: gaitlab's physics beside Jolt Physics (peers.ts). */
+  peers: PeersHook;
 }
 declare global {
   interface Window {
     gaitlabBench: Hook;
   }
 }
-const hook: Hook = { state: 'idle', document: null, error: null, capacity: { state: 'idle', biped: null, quadruped: null, seconds: 0 } };
+const hook: Hook = { state: 'idle', document: null, error: null, capacity: { state: 'idle', biped: null, quadruped: null, seconds: 0 },
+  peers: { state: 'idle', status: '', error: null, run: null } };
 window.gaitlabBench = hook;
 
 const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
@@ -110,6 +114,7 @@ root.append(el('section', { className: 'capacity' },
 
 const device = el('dl', { className: 'device' });
 root.append(el('section', {}, el('h2', {}, 'Device'), device));
+root.append(peersSection(hook.peers, params));
 const advanced = el('details', { className: 'advanced' });
 root.append(advanced);
 advanced.append(el('summary', {}, 'Advanced: the thesis’s full experiment, charts and tables'));

@@ -202,10 +202,6 @@ try {
     send,
     select,
     // The last report's horizontal speed along its heading (a walker moves where it faces).
-    velocityOf: (id) => {
-      const c = state.characters.find((x) => x.id === id);
-      return c && !c.fallen ? new THREE.Vector3(Math.sin(c.heading) * c.speed, 0, Math.cos(c.heading) * c.speed) : null;
-    },
   });
 } catch (error) {
   showError('WebGL is not available', `${errorMessage(error)}\nThe demo needs a browser with WebGL 2.`);

@@ -176,6 +176,9 @@ installTestHook({
     azimuth: stage ? stage.controls.getAzimuthalAngle() : 0,
   }),
   bodies: () => {
+    // The newest published frame, read now rather than at the next animation frame: a test that
+    // steps the paused scene and looks after each step is not held to the drawn frame rate.
+    crowd.update();
     const { count } = crowd.matrices();
     const p = new THREE.Vector3();
     const { array } = crowd.matrices();

@@ -1,7 +1,7 @@
 // Picking against the instance matrices (web/src/render/picking.ts) and the ballistic throw.
 import * as THREE from 'three';
 import { describe, expect, it } from 'vitest';
-import { pickBody, throwVelocity } from '../../../web/src/render/picking';
+import { MAX_FLIGHT, FASTEST_THROW, pickBody, THROW_SPEED, throwSpeed, throwVelocity } from '../../../web/src/render/picking';
 
 /** A column-major instance matrix: box of `size` at `position`, turned by `yaw` about y. */
 function box(position: [number, number, number], size: [number, number, number], yaw = 0): number[] {
@@ -57,5 +57,15 @@ describe('throwVelocity', () => {
       p.addScaledVector(vel, dt);
     }
     expect(p.distanceTo(target)).toBeLessThan(0.01);
+  });
+});
+
+describe('throwSpeed', () => {
+  it('throws near targets at the usual speed and far ones harder, so that no flight takes over a second', () => {
+    expect(throwSpeed(5)).toBe(THROW_SPEED);
+    expect(throwSpeed(THROW_SPEED * MAX_FLIGHT)).toBe(THROW_SPEED);
+    expect(throwSpeed(22)).toBeCloseTo(22 / MAX_FLIGHT, 12);
+    expect(22 / throwSpeed(22)).toBeLessThanOrEqual(MAX_FLIGHT);
+    expect(throwSpeed(500)).toBe(FASTEST_THROW);
   });
 });

@@ -82,8 +82,22 @@ function slab(o: THREE.Vector3, d: THREE.Vector3): number | null {
   return near;
 }
 
-/** How fast the page throws a box, m/s: the straight distance over the flight time. */
+/** How fast the page throws a box, m/s (the straight distance over the flight time), at least. */
 export const THROW_SPEED = 14;
+/** The longest flight a throw takes, s, and the fastest throw that keeps to it, m/s. */
+export const MAX_FLIGHT = 1;
+export const FASTEST_THROW = 30;
+
+/**
+ * The speed of a throw over `distance` metres: THROW_SPEED, or faster for a target beyond
+ * THROW_SPEED·MAX_FLIGHT metres so that the flight stays within MAX_FLIGHT (up to
+ * FASTEST_THROW). The camera frames a wandering crowd from 20–40 m: at 14 m/s a box would fly
+ * for two or three seconds on an arc rising metres above the line of sight, and a walker's
+ * course would change on the way.
+ */
+export function throwSpeed(distance: number): number {
+  return Math.min(FASTEST_THROW, Math.max(THROW_SPEED, distance / MAX_FLIGHT));
+}
 
 /**
  * Initial velocity that carries a box thrown from `from` to `target` in a ballistic arc, flying

@@ -7,7 +7,7 @@
 // character used to pull it instead of zooming), and a tap still selects or throws.
 import * as THREE from 'three';
 import type { CrowdMesh } from './crowd-mesh';
-import { pickBody, THROW_SPEED, throwVelocity } from './picking';
+import { pickBody, throwSpeed, throwVelocity } from './picking';
 import type { Stage } from './stage';
 import type { SceneCommand, Vec3 } from '../sim/protocol';
 import { groundHeight, intersectGround } from '../sim/terrain-grid';
@@ -173,7 +173,8 @@ export class PointerInteraction {
   /** Throws a box from just in front of the camera so that it lands on `target` (a point that stays put). */
   throwAt(target: THREE.Vector3): void {
     const from = this.throwFrom(target);
-    this.actions.send({ type: 'throwBox', from: toVec3(from), velocity: toVec3(throwVelocity(from, target)), half: BOX_HALF });
+    const velocity = throwVelocity(from, target, throwSpeed(from.distanceTo(target)));
+    this.actions.send({ type: 'throwBox', from: toVec3(from), velocity: toVec3(velocity), half: BOX_HALF });
   }
 
   /**
@@ -185,7 +186,8 @@ export class PointerInteraction {
    */
   throwAtCharacter(id: number, segment: number, local: THREE.Vector3, point: THREE.Vector3): void {
     const from = this.throwFrom(point);
-    this.actions.send({ type: 'throwAt', from: toVec3(from), id, segment, local: toVec3(local), speed: THROW_SPEED, half: BOX_HALF });
+    const speed = throwSpeed(from.distanceTo(point));
+    this.actions.send({ type: 'throwAt', from: toVec3(from), id, segment, local: toVec3(local), speed, half: BOX_HALF });
   }
 }
 

@@ -93,22 +93,42 @@ describe('the demo on a phone', { timeout: TEST_TIMEOUT * 2 }, () => {
     assert.ok(seen.y > 0 && seen.y < sheet.y && seen.x > 0 && seen.x < 390, `the selected character is above the sheet (${seen.x.toFixed(0)}, ${seen.y.toFixed(0)})`);
     await page.screenshot({ path: path.join(resultsDir, 'phone-selected.png') });
 
-    // One finger drags: the camera orbits (its direction changes, its distance does not).
+    // One finger drags: the camera orbits (its direction changes, its distance does not). The
+    // camera moves in the page's next frames, which a loaded machine draws a second or more
+    // apart: wait for the change, not for a fixed time.
     await page.keyboard.press('Escape');
     await page.waitForFunction(() => window.gaitlab.stats().selected === null, null, { timeout: PAGE_TIMEOUT });
     const before0 = await cameraOf(page);
     await gesture(page, [Array.from({ length: 12 }, (_, i) => [110 + i * 14, 300])]);
-    await page.waitForTimeout(800);
+    await page
+      .waitForFunction((a) => Math.abs(window.gaitlab.camera().azimuth - a) > 0.1, before0.azimuth, { timeout: PAGE_TIMEOUT, polling: 100 })
+      .catch(() => {});
+    await page.waitForTimeout(1500); // the orbit's damping settles
     const orbited = await cameraOf(page);
     assert.ok(Math.abs(orbited.azimuth - before0.azimuth) > 0.1, `orbit: azimuth ${before0.azimuth.toFixed(2)} → ${orbited.azimuth.toFixed(2)}`);
-    // Two fingers apart: zoom in (the camera comes closer to what it looks at).
+    // Two fingers apart: zoom in (the camera comes closer to what it looks at), even with one
+    // finger landing on a character (a finger on a character used to take the gesture from the
+    // camera, and the pinch zoomed only when both fingers missed the crowd).
+    const finger = await page.evaluate(() => {
+      const canvas = document.querySelector('#scene');
+      const onScreen = window.gaitlab.characters().map((c) => ({ id: c.id, p: window.gaitlab.screenPosition(c.id) }))
+        .filter(({ id, p }) => p && p.x > 80 && p.x < innerWidth - 80 && p.y > 120 && p.y < innerHeight - 120 &&
+          document.elementFromPoint(p.x, p.y) === canvas && window.gaitlab.ownerAt(p.x, p.y) === id);
+      onScreen.sort((a, b) => Math.abs(a.p.x - innerWidth / 2) - Math.abs(b.p.x - innerWidth / 2));
+      return onScreen[0]?.p ?? null;
+    });
+    assert.ok(finger, 'a character in view to put a finger on');
+    const side = finger.x > 195 ? -1 : 1; // the other finger towards the middle of the screen
     await gesture(page, [
-      Array.from({ length: 12 }, (_, i) => [195 - 20 - i * 8, 420]),
-      Array.from({ length: 12 }, (_, i) => [195 + 20 + i * 8, 420]),
+      Array.from({ length: 10 }, (_, i) => [finger.x - side * i * 6, finger.y]),
+      Array.from({ length: 10 }, (_, i) => [finger.x + side * (40 + i * 6), finger.y]),
     ]);
-    await page.waitForTimeout(800);
+    await page
+      .waitForFunction((d) => window.gaitlab.camera().distance < 0.9 * d, orbited.distance, { timeout: PAGE_TIMEOUT, polling: 100 })
+      .catch(() => {});
     const zoomed = await cameraOf(page);
     assert.ok(zoomed.distance < 0.9 * orbited.distance, `pinch: distance ${orbited.distance.toFixed(1)} → ${zoomed.distance.toFixed(1)} m`);
+    assert.equal((await stats(page)).selected, null, 'a pinch is not a tap: nothing selected');
     assert.deepEqual(problems, [], 'no page errors');
   });
 });

@@ -94,6 +94,11 @@ describe('the C ABI contract in WASM', () => {
     assert.deepEqual([0, 1, 2].map((i) => thrown.read.f64('velocity', i)), [0, 0, 0]);
     assert.equal(thrown.read.f64('half'), 0.12);
     thrown.free();
+    const aimed = defaults('gl_throw_at_settings', '_gl_throw_at_defaults');
+    assert.deepEqual(['id', 'segment'].map(aimed.read.i32), [-1, 0]);
+    assert.deepEqual([0, 1, 2].map((i) => aimed.read.f64('from', i)).concat([0, 1, 2].map((i) => aimed.read.f64('local', i))), [0, 1, 0, 0, 0, 0]);
+    assert.deepEqual(['speed', 'half'].map((f) => aimed.read.f64(f)), [14, 0.12]);
+    aimed.free();
   });
 
   it('runs a benchmark point from a settings struct, and refuses one out of range with a message', () => {
@@ -130,6 +135,21 @@ describe('the C ABI contract in WASM', () => {
       assert.ok(Number.isNaN(Module._gl_cruise_speed(7)));
       assert.equal(Module._gl_bench_warm_up(3, 1), -1);
       assert.match(lastError(), /^legs: 3 /);
+      // A throw at a character: refused for one that does not exist, aimed and thrown at one that does.
+      const aimed = defaults('gl_throw_at_settings', '_gl_throw_at_defaults');
+      try {
+        assert.equal(Module._gl_sim_throw_at(sim, aimed.p), -3);
+        assert.equal(lastError(), 'id: no character has id -1');
+        const id = Module._gl_sim_spawn(sim, 0, 0, 0, 0);
+        Module.HEAP32[(aimed.p + layout('gl_throw_at_settings').offsets.id) >> 2] = id;
+        Module.HEAPF64[(aimed.p + layout('gl_throw_at_settings').offsets.from) / 8 + 2] = -8;
+        assert.ok(Module._gl_sim_throw_at(sim, aimed.p) >= 0, lastError());
+        Module.HEAPF64[(aimed.p + layout('gl_throw_at_settings').offsets.speed) / 8] = NaN;
+        assert.equal(Module._gl_sim_throw_at(sim, aimed.p), -1);
+        assert.equal(lastError(), 'speed: NaN is not finite');
+      } finally {
+        aimed.free();
+      }
     } finally {
       Module._gl_sim_destroy(sim);
     }

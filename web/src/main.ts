@@ -176,6 +176,9 @@ installTestHook({
     azimuth: stage ? stage.controls.getAzimuthalAngle() : 0,
   }),
   bodies: () => {
+    // The newest published frame, read now rather than at the next animation frame: a test that
+    // steps the paused scene and looks after each step is not held to the drawn frame rate.
+    crowd.update();
     const { count } = crowd.matrices();
     const p = new THREE.Vector3();
     const { array } = crowd.matrices();
@@ -202,10 +205,6 @@ try {
     send,
     select,
     // The last report's horizontal speed along its heading (a walker moves where it faces).
-    velocityOf: (id) => {
-      const c = state.characters.find((x) => x.id === id);
-      return c && !c.fallen ? new THREE.Vector3(Math.sin(c.heading) * c.speed, 0, Math.cos(c.heading) * c.speed) : null;
-    },
   });
 } catch (error) {
   showError('WebGL is not available', `${errorMessage(error)}\nThe demo needs a browser with WebGL 2.`);

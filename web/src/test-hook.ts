@@ -101,8 +101,10 @@ export interface GaitlabHook {
   /** Puts the camera at `from` looking at `to` (screenshots and tests; orbiting continues from there). */
   view(from: Vec3, to: Vec3): void;
   /**
-   * Every body drawn now: its owner (character id, −1 for props), centre (m) and instance matrix
-   * (column-major, its box's size baked in: the unit box's axes scaled).
+   * Every body of the newest simulation frame (read from the shared render buffer now, and then
+   * drawn: stats() reports that frame from then on): its owner (character id, −1 for props),
+   * centre (m) and instance matrix (column-major, its box's size baked in: the unit box's axes
+   * scaled).
    */
   bodies(): { owner: number; position: Vec3; matrix: number[] }[];
   /** The camera: its distance to the point it looks at (m) and its azimuth about +y (rad). */

@@ -103,6 +103,12 @@ std::string notACharacter(int kind) {
   return "kind: " + str(kind) + " is not GL_KIND_BIPED or GL_KIND_QUADRUPED";
 }
 std::string noCharacter(int id) { return "id: no character has id " + str(id); }
+// A thrown box's half size (api/limits.h), or the refusal's message.
+std::string outOfHalf(double half) {
+  using namespace gaitlab::limits;
+  if (half >= kMinThrowHalf && half <= kMaxThrowHalf) return "";
+  return "half: " + str(half) + " is outside [" + str(kMinThrowHalf) + ", " + str(kMaxThrowHalf) + "] m";
+}
 
 bool benchLegs(int legs) { return legs == GL_LEGS_MIXED || legs == GL_LEGS_BIPED || legs == GL_LEGS_QUADRUPED; }
 std::string notLegs(int legs) { return "legs: " + str(legs) + " is not 0 (mixed), 2 or 4"; }
@@ -347,10 +353,35 @@ int gl_sim_throw_box(void* s, const gl_throw_settings* t) {
   }
   if (std::hypot(t->velocity[0], t->velocity[1], t->velocity[2]) > kMaxThrowSpeed)
     return refuse(GL_ERR_ARGUMENT, "velocity: " + str(t->velocity) + " is faster than " + str(kMaxThrowSpeed) + " m/s");
-  if (!(t->half >= 0.03 && t->half <= 0.5))
-    return refuse(GL_ERR_ARGUMENT, "half: " + str(t->half) + " is outside [0.03, 0.5] m");
+  if (const std::string e = outOfHalf(t->half); !e.empty()) return refuse(GL_ERR_ARGUMENT, e);
   const int id = sim(s)->throwBox({t->from[0], t->from[1], t->from[2]},
                                   {t->velocity[0], t->velocity[1], t->velocity[2]}, t->half);
+  if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, GL_KIND_BOX));
+  return id;
+}
+
+void gl_throw_at_defaults(gl_throw_at_settings* t) { *t = gl_throw_at_settings{-1, 0, {0, 1, 0}, {0, 0, 0}, 14, 0.12}; }
+
+int gl_sim_throw_at(void* s, const gl_throw_at_settings* t) {
+  using namespace gaitlab::limits;
+  for (const std::string& e : {outOfRange("from", t->from, kMaxCoordinate), outOfRange("local", t->local, kMaxDragLocal),
+                               outOfRange("speed", t->speed, kMaxThrowSpeed), outOfHalf(t->half)}) {
+    if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
+  }
+  if (!(t->speed >= kMinAimSpeed))
+    return refuse(GL_ERR_ARGUMENT, "speed: " + str(t->speed) + " is outside [" + str(kMinAimSpeed) + ", " + str(kMaxThrowSpeed) + "] m/s");
+  const int i = sim(s)->indexOf(t->id);
+  if (i < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(t->id));
+  if (t->segment < 0 || t->segment >= sim(s)->character(i).segmentCount())
+    return refuse(GL_ERR_ARGUMENT, "segment: character " + str(t->id) + " has no segment " + str(t->segment));
+  const Eigen::Vector3d from(t->from[0], t->from[1], t->from[2]);
+  const auto aim = sim(s)->aimAt(i, t->segment, {t->local[0], t->local[1], t->local[2]}, from, t->speed);
+  // A long flight at a low speed needs a steep lob; one faster than any throw is refused.
+  if (!(aim.velocity.norm() <= kMaxThrowSpeed))
+    return refuse(GL_ERR_ARGUMENT, "speed: the throw at character " + str(t->id) + " needs " + str(aim.velocity.norm()) +
+                                       " m/s, faster than " + str(kMaxThrowSpeed) + " m/s (it is too far for a throw at " +
+                                       str(t->speed) + " m/s)");
+  const int id = sim(s)->throwBox(from, aim.velocity, t->half);
   if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, GL_KIND_BOX));
   return id;
 }

@@ -235,6 +235,30 @@ GL_EXPORT void gl_throw_defaults(gl_throw_settings* settings);
 // thrown box can make way.
 GL_EXPORT int gl_sim_throw_box(void* sim, const gl_throw_settings* settings);
 
+// A box thrown at a character (the page's shift-click on one): aimed by the simulation, from the
+// character's state when the call is made, at where point `local` of its segment `segment` will
+// be when the box arrives (Simulation::aimAt: the character carried by its centre of mass's
+// velocity, turning at its goal's turn rate; the box's ballistic flight as the physics integrates
+// it, covering the straight distance at `speed`). The page picks the character and the point on
+// the frame it shows, which is a frame time and a worker round trip old; aiming here, from the
+// state the box is thrown into, makes the throw meet the character where it really will be.
+typedef struct gl_throw_at_settings {
+  int32_t id;        // default -1 (none: must be set)
+  int32_t segment;   // default 0; the character's n-th body in the render buffer
+  double from[3];    // default (0, 1, 0)
+  double local[3];   // default (0, 0, 0); segment body frame, m
+  double speed;      // default 14 m/s; must lie in [1, 100]
+  double half;       // default 0.12; must lie in [0.03, 0.5]
+} gl_throw_at_settings;
+GL_EXPORT void gl_throw_at_defaults(gl_throw_at_settings* settings);
+
+// Throws it. Returns the box's id (>= 0); GL_ERR_NO_CHARACTER; GL_ERR_ARGUMENT for a segment the
+// character does not have, a value that is not finite, `from` beyond 1000 m, `local` beyond
+// 10 m, a speed or half size out of range, or an aim that needs a throw over 100 m/s (a far
+// target at a slow speed: the flight's rise grows with its time); GL_ERR_FULL as
+// gl_sim_throw_box.
+GL_EXPORT int gl_sim_throw_at(void* sim, const gl_throw_at_settings* settings);
+
 // A drag: point `local` of segment `segment` of character `id` (segment body frame, metres; the
 // segment is the character's n-th body in the render buffer) held on a spring towards the world
 // point `target`.
@@ -432,6 +456,13 @@ static_assert(offsetof(gl_throw_settings, from) == 0, "layout");
 static_assert(offsetof(gl_throw_settings, velocity) == 24, "layout");
 static_assert(offsetof(gl_throw_settings, half) == 48, "layout");
 static_assert(sizeof(gl_throw_settings) == 56, "layout");
+static_assert(offsetof(gl_throw_at_settings, id) == 0, "layout");
+static_assert(offsetof(gl_throw_at_settings, segment) == 4, "layout");
+static_assert(offsetof(gl_throw_at_settings, from) == 8, "layout");
+static_assert(offsetof(gl_throw_at_settings, local) == 32, "layout");
+static_assert(offsetof(gl_throw_at_settings, speed) == 56, "layout");
+static_assert(offsetof(gl_throw_at_settings, half) == 64, "layout");
+static_assert(sizeof(gl_throw_at_settings) == 72, "layout");
 static_assert(offsetof(gl_drag_settings, id) == 0, "layout");
 static_assert(offsetof(gl_drag_settings, segment) == 4, "layout");
 static_assert(offsetof(gl_drag_settings, local) == 8, "layout");

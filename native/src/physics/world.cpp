@@ -124,6 +124,11 @@ btRigidBody* World::addBox(const Eigen::Vector3d& halfExtents, double mass,
   return body;
 }
 
+Eigen::Vector3d World::gravity() const {
+  const btVector3 g = dynamics_->getGravity();
+  return {g.x(), g.y(), g.z()};
+}
+
 void World::removeBody(btRigidBody* body) {
   auto it = std::find(bodies_.begin(), bodies_.end(), body);
   if (it == bodies_.end()) return;

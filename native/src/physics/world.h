@@ -56,6 +56,9 @@ class World {
   World& operator=(const World&) = delete;
 
   btDiscreteDynamicsWorld& dynamics() { return *dynamics_; }
+  const btDiscreteDynamicsWorld& dynamics() const { return *dynamics_; }
+  // The world's gravity, m/s² (what a thrown box's flight is aimed with: sim/intercept.h).
+  Eigen::Vector3d gravity() const;
 
   // A box rigid body (mass 0 = static), added to the world with the given collision filter.
   btRigidBody* addBox(const Eigen::Vector3d& halfExtents, double mass,

@@ -9,6 +9,7 @@
 #include "api/limits.h"
 #include "gait/heading.h"
 #include "physics/convert.h"
+#include "sim/intercept.h"
 #include "sim/simulation.h"
 
 namespace gaitlab::sim {
@@ -69,6 +70,27 @@ int Simulation::throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& vel
   ++boxes_;
   if (static_cast<int>(interaction_.thrown.size()) > kMaxThrown) removeOldestThrown();
   return id;
+}
+
+Intercept Simulation::aimAt(int i, int segment, const Eigen::Vector3d& local,
+                            const Eigen::Vector3d& from, double speed) const {
+  const physics::Character& c = character(i);
+  // The point aimed at, where it is now; and the character's centre-of-mass velocity, which
+  // carries it along (the segment's own velocity would add a swinging limb's to the walk).
+  const Eigen::Vector3d at =
+      physics::toEigen(c.body(segment)->getCenterOfMassTransform() * physics::toBt(local));
+  Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+  double mass = 0;
+  for (int k = 0; k < c.segmentCount(); ++k) {
+    const btRigidBody* b = c.body(k);
+    const double m = b->getInvMass() > 0 ? 1.0 / b->getInvMass() : 0.0;
+    momentum += m * physics::toEigen(b->getLinearVelocity());
+    mass += m;
+  }
+  const Eigen::Vector3d velocity = mass > 0 ? Eigen::Vector3d(momentum / mass) : Eigen::Vector3d::Zero();
+  return interceptThrow(from, at, velocity, controller(i).goal().turnRate, speed,
+                        shards_.world(agents_[i]->shard).gravity(),
+                        physics::kFixedStep / physics::kPhysicsSubsteps);
 }
 
 void Simulation::removeOldestThrown() {

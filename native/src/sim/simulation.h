@@ -28,6 +28,7 @@
 #include "sim/agent.h"
 #include "sim/ids.h"
 #include "sim/interaction.h"
+#include "sim/intercept.h"
 #include "sim/physics_shards.h"
 #include "sim/render_buffer.h"
 #include "sim/render_publisher.h"
@@ -178,6 +179,13 @@ class Simulation {
   // Returns its id, or -1 if the render buffer is full.
   static constexpr int kMaxThrown = 32;
   int throwBox(const Eigen::Vector3d& from, const Eigen::Vector3d& velocity, double half);
+  // The throw from `from` at character index i (the page's shift-click on a character), aimed
+  // in the simulation from the character's state now: at where point `local` (body frame of its
+  // segment `segment`, metres) will be when a box covering the distance at `speed` m/s arrives
+  // (intercept.h: carried by the centre of mass's velocity, turning at the goal's turn rate; a
+  // ballistic flight as Bullet integrates it). throwBox(from, aim.velocity, half) throws it.
+  Intercept aimAt(int i, int segment, const Eigen::Vector3d& local, const Eigen::Vector3d& from,
+                  double speed) const;
 
   // A spring pulling point `local` (body frame of the character's segment `segment`, metres)
   // towards `target` (world), applied every step until endDrag(). One drag at a time: a pointer.

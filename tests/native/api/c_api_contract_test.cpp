@@ -45,6 +45,14 @@ TEST(CApiContract, EveryRefusalReturnsItsFailureValueAndNamesTheArgument) {
   gl_throw_settings badFrom;
   gl_throw_defaults(&badFrom);
   badFrom.from[1] = nan;
+  const auto throwAt = [&](auto change) {
+    gl_throw_at_settings t;
+    gl_throw_at_defaults(&t);
+    t.id = biped;
+    t.from[2] = -8;
+    change(t);
+    return gl_sim_throw_at(sim, &t);
+  };
   gl_drag_settings noId;
   gl_drag_defaults(&noId);
   gl_drag_settings badSegment;
@@ -86,6 +94,25 @@ TEST(CApiContract, EveryRefusalReturnsItsFailureValueAndNamesTheArgument) {
       {"gl_sim_set_goal speed", [&] { return gl_sim_set_goal(sim, biped, nan, 0) == GL_ERR_ARGUMENT; }, "goal speed: NaN is not finite"},
       {"gl_sim_throw_box half", [&] { return gl_sim_throw_box(sim, &badHalf) == GL_ERR_ARGUMENT; }, "half: 2"},
       {"gl_sim_throw_box from", [&] { return gl_sim_throw_box(sim, &badFrom) == GL_ERR_ARGUMENT; }, "from: (0.0, NaN, 0.0) is not finite"},
+      {"gl_sim_throw_at id", [&] { return throwAt([](gl_throw_at_settings& t) { t.id = 77; }) == GL_ERR_NO_CHARACTER; },
+       "id: no character has id 77"},
+      {"gl_sim_throw_at prop", [&] { return throwAt([&](gl_throw_at_settings& t) { t.id = box; }) == GL_ERR_NO_CHARACTER; },
+       "id: no character has id " + std::to_string(box)},
+      {"gl_sim_throw_at segment", [&] { return throwAt([](gl_throw_at_settings& t) { t.segment = 99; }) == GL_ERR_ARGUMENT; },
+       "segment: "},
+      {"gl_sim_throw_at from", [&] { return throwAt([&](gl_throw_at_settings& t) { t.from[0] = nan; }) == GL_ERR_ARGUMENT; },
+       "from: (NaN, 1.0, -8.0) is not finite"},
+      {"gl_sim_throw_at local", [&] { return throwAt([](gl_throw_at_settings& t) { t.local[1] = 11; }) == GL_ERR_ARGUMENT; },
+       "local: "},
+      {"gl_sim_throw_at speed", [&] { return throwAt([&](gl_throw_at_settings& t) { t.speed = nan; }) == GL_ERR_ARGUMENT; },
+       "speed: NaN is not finite"},
+      {"gl_sim_throw_at slow", [&] { return throwAt([](gl_throw_at_settings& t) { t.speed = 0.5; }) == GL_ERR_ARGUMENT; },
+       "speed: 0.5 is outside [1.0, 100.0]"},
+      {"gl_sim_throw_at lob", [&] {
+         return throwAt([](gl_throw_at_settings& t) { t.from[2] = -900; t.speed = 2; }) == GL_ERR_ARGUMENT;
+       }, "speed: the throw at character "},
+      {"gl_sim_throw_at half", [&] { return throwAt([](gl_throw_at_settings& t) { t.half = 0.01; }) == GL_ERR_ARGUMENT; },
+       "half: 0.01 is outside [0.03, 0.5] m"},
       {"gl_sim_drag id", [&] { return gl_sim_drag(sim, &noId) == GL_ERR_NO_CHARACTER; }, "id: no character has id -1"},
       {"gl_sim_drag segment", [&] { return gl_sim_drag(sim, &badSegment) == GL_ERR_ARGUMENT; }, "segment: "},
       {"gl_sim_reset_character", [&] { return gl_sim_reset_character(sim, 77) == GL_ERR_NO_CHARACTER; }, "id: no character has id 77"},

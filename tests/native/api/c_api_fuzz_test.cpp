@@ -66,7 +66,7 @@ TEST(CApiFuzz, RandomCommandsReturnAResultOrARefusalAndLeaveTheStateFinite) {
     const int id = info.empty() || h.rng() % 4 == 0 ? h.integer()
                                                     : static_cast<int>(info[(h.rng() % (info.size() / GL_INFO_FIELDS)) * GL_INFO_FIELDS]);
     int result = 0;
-    switch (h.rng() % 12) {
+    switch (h.rng() % 13) {
       case 0: result = gl_sim_set_goal(sim, h.rng() % 3 ? id : -1, h.number(), h.number()); break;
       case 1: result = gl_sim_spawn(sim, h.integer() & 3, h.number(), h.number(), h.number()); break;
       case 2: {
@@ -86,6 +86,12 @@ TEST(CApiFuzz, RandomCommandsReturnAResultOrARefusalAndLeaveTheStateFinite) {
       case 8: result = gl_sim_room(sim, h.integer()); break;
       case 9: result = gl_sim_add_characters(sim, h.integer(), static_cast<int>(h.rng() % 4) - 1); break;
       case 10: result = gl_sim_step(sim, h.rng() % 2 ? h.integer() : 2); break;
+      case 11: {
+        const gl_throw_at_settings t{id, h.integer() & 15, {h.number(), h.number(), h.number()},
+                                     {h.number(), h.number(), h.number()}, h.number(), h.number()};
+        result = gl_sim_throw_at(sim, &t);
+        break;
+      }
       default: {
         const double y = gl_sim_ground_height(sim, h.number(), h.number());
         result = std::isnan(y) ? GL_ERR_ARGUMENT : 0;
@@ -189,7 +195,7 @@ TEST(CApiFuzz, RoomIsCountedAndASpawnBeyondItIsRefusedWithTheReason) {
   EXPECT_EQ(gl_sim_room(sim, GL_KIND_BOX), gaitlab::limits::kMaxBoxes);
   EXPECT_EQ(gl_sim_room(sim, 3), GL_ERR_ARGUMENT);
   const int bipeds = gl_sim_room(sim, GL_KIND_BIPED);
-  gl_sim_spawn(sim, GL_KIND_BIPED, 0, 0, 0);
+  const int biped = gl_sim_spawn(sim, GL_KIND_BIPED, 0, 0, 0);
   EXPECT_EQ(gl_sim_room(sim, GL_KIND_BIPED), bipeds - 1);
   // Boxes dropped on one spot: every one touches every other. The 65th is refused.
   for (int i = 0; i < gaitlab::limits::kMaxBoxes; ++i) ASSERT_GE(gl_sim_spawn(sim, GL_KIND_BOX, 3, 3, 0), 0) << i;
@@ -198,6 +204,11 @@ TEST(CApiFuzz, RoomIsCountedAndASpawnBeyondItIsRefusedWithTheReason) {
   EXPECT_NE(std::string(gl_last_error()).find("64 boxes"), std::string::npos) << gl_last_error();
   const gl_throw_settings t{{0, 1, 0}, {0, 0, 1}, 0.1};
   EXPECT_EQ(gl_sim_throw_box(sim, &t), GL_ERR_FULL);
+  gl_throw_at_settings at;
+  gl_throw_at_defaults(&at);
+  at.id = biped;
+  at.from[2] = -8;
+  EXPECT_EQ(gl_sim_throw_at(sim, &at), GL_ERR_FULL);
   gl_sim_destroy(sim);
   // Thrown boxes make way for one another at the limit.
   sim = gl_sim_create(1, 1);

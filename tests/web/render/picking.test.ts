@@ -1,7 +1,7 @@
 // Picking against the instance matrices (web/src/render/picking.ts) and the ballistic throw.
 import * as THREE from 'three';
 import { describe, expect, it } from 'vitest';
-import { leadTarget, pickBody, throwVelocity } from '../../../web/src/render/picking';
+import { MAX_FLIGHT, FASTEST_THROW, pickBody, THROW_SPEED, throwSpeed, throwVelocity } from '../../../web/src/render/picking';
 
 /** A column-major instance matrix: box of `size` at `position`, turned by `yaw` about y. */
 function box(position: [number, number, number], size: [number, number, number], yaw = 0): number[] {
@@ -60,25 +60,12 @@ describe('throwVelocity', () => {
   });
 });
 
-describe('leadTarget', () => {
-  it('aims where a walker will be when the box arrives, and the ballistic box meets it there', () => {
-    const from = new THREE.Vector3(0, 5, 12);
-    const walker = new THREE.Vector3(0, 1, 0);
-    const velocity = new THREE.Vector3(1, 0, 0); // 1 m/s along +x
-    const aim = leadTarget(from, walker, velocity, 14);
-    const flight = aim.distanceTo(from) / 14;
-    // The aim point is the walker's position after the box's flight time.
-    expect(aim.distanceTo(walker.clone().addScaledVector(velocity, flight))).toBeLessThan(1e-3);
-    expect(aim.x).toBeGreaterThan(0.8);
-    // Fly the box (gravity, the throw's speed): at the flight time it is at the aim, which is where the walker is.
-    const v = throwVelocity(from, aim, 14);
-    const t = Math.max(0.05, aim.distanceTo(from) / 14);
-    const box = from.clone().addScaledVector(v, t).add(new THREE.Vector3(0, -0.5 * 9.81 * t * t, 0));
-    expect(box.distanceTo(walker.clone().addScaledVector(velocity, t))).toBeLessThan(0.01);
-  });
-
-  it('aims at the target itself when it stands still', () => {
-    const target = new THREE.Vector3(2, 0.5, -1);
-    expect(leadTarget(new THREE.Vector3(0, 4, 8), target, new THREE.Vector3()).distanceTo(target)).toBe(0);
+describe('throwSpeed', () => {
+  it('throws near targets at the usual speed and far ones harder, so that no flight takes over a second', () => {
+    expect(throwSpeed(5)).toBe(THROW_SPEED);
+    expect(throwSpeed(THROW_SPEED * MAX_FLIGHT)).toBe(THROW_SPEED);
+    expect(throwSpeed(22)).toBeCloseTo(22 / MAX_FLIGHT, 12);
+    expect(22 / throwSpeed(22)).toBeLessThanOrEqual(MAX_FLIGHT);
+    expect(throwSpeed(500)).toBe(FASTEST_THROW);
   });
 });

@@ -30,7 +30,7 @@ function numbersIn(value: unknown): number[] {
   return out;
 }
 
-const SCENE_TYPES = ['setGoal', 'throwBox', 'drag', 'endDrag', 'resetCharacter', 'resetFallen', 'remove', 'add', 'autoReset',
+const SCENE_TYPES = ['setGoal', 'throwBox', 'throwAt', 'drag', 'endDrag', 'resetCharacter', 'resetFallen', 'remove', 'add', 'autoReset',
   'setParams', 'patchParams', 'learner', 'removeLearner', 'setTerrain', 'nope', '__proto__', 'constructor'];
 const TYPES = ['init', 'pause', 'resume', 'reset', 'released', 'step', 'timeScale', 'scene', 'getParams', 'getPreset', 'normalize',
   'toString', 'hasOwnProperty', 'x'];
@@ -71,6 +71,8 @@ describe('checkSimCommand', () => {
     expect(goal).toEqual({ ok: true, command: { type: 'scene', command: { type: 'setGoal', id: 'all', speed: 1, turn: 0.2 } } });
     const thrown = { type: 'throwBox', from: [0, 1, 2], velocity: [0, 0, 12], half: 0.12 };
     expect(checkSimCommand({ type: 'scene', command: thrown })).toEqual({ ok: true, command: { type: 'scene', command: thrown } });
+    const aimed = { type: 'throwAt', from: [0, 3, -8], id: 4, segment: 0, local: [0, 0.1, 0], speed: 14, half: 0.12 };
+    expect(checkSimCommand({ type: 'scene', command: aimed })).toEqual({ ok: true, command: { type: 'scene', command: aimed } });
     expect(checkSimCommand({ type: 'normalize', request: 3, json: '{}' }).ok).toBe(true);
     expect(checkSimCommand({ type: 'step' })).toEqual({ ok: true, command: { type: 'step' } });
     const patch = { type: 'patchParams', id: 4, character: 'biped', patch: { 'gains.kp': 3, 'legFrame.pitch': [0, 1, 2, 3] }, request: 9 };
@@ -85,6 +87,13 @@ describe('checkSimCommand', () => {
     expect(scene({ type: 'setGoal', id: 2 ** 40, speed: 1, turn: 0 })).toMatchObject({ ok: false, error: expect.stringMatching(/id: /) });
     expect(scene({ type: 'drag', id: 1, segment: 0, local: [0, 0, 0], target: [0, MAX_COORDINATE * 2, 0] })).toMatchObject({ ok: false, error: expect.stringMatching(/target\[1\]/) });
     expect(scene({ type: 'throwBox', from: [0, 1, 0], velocity: [80, 80, 0], half: 0.1 })).toMatchObject({ ok: false, error: expect.stringMatching(/velocity: faster/) });
+    const aimed = { type: 'throwAt', from: [0, 3, -8], id: 4, segment: 0, local: [0, 0, 0], speed: 14, half: 0.12 };
+    expect(scene({ ...aimed, from: [0, NaN, 0] })).toMatchObject({ ok: false, error: expect.stringMatching(/from\[1\]: NaN is not finite/) });
+    expect(scene({ ...aimed, id: 'all' })).toMatchObject({ ok: false, error: expect.stringMatching(/id: expected a number/) });
+    expect(scene({ ...aimed, segment: -1 })).toMatchObject({ ok: false, error: expect.stringMatching(/segment: -1 is outside/) });
+    expect(scene({ ...aimed, local: [0, Infinity, 0] })).toMatchObject({ ok: false, error: expect.stringMatching(/local\[1\]: Infinity/) });
+    expect(scene({ ...aimed, speed: 0.5 })).toMatchObject({ ok: false, error: expect.stringMatching(/speed: 0.5 is outside \[1, 100\]/) });
+    expect(scene({ ...aimed, half: 2 })).toMatchObject({ ok: false, error: expect.stringMatching(/half: 2 is outside/) });
     expect(scene({ type: 'add', kind: 'biped', count: 2.5 })).toMatchObject({ ok: false, error: expect.stringMatching(/count: 2.5 is not a whole number/) });
     expect(scene({ type: 'patchParams', id: 'all', character: 'biped', patch: { a: [1, NaN] } })).toMatchObject({ ok: false, error: expect.stringMatching(/a\[1\]: NaN/) });
     expect(checkSimCommand({ type: 'getParams', request: 5, id: 'x' })).toMatchObject({ ok: false, request: 5 });

@@ -82,28 +82,30 @@ function slab(o: THREE.Vector3, d: THREE.Vector3): number | null {
   return near;
 }
 
+/** How fast the page throws a box, m/s (the straight distance over the flight time), at least. */
+export const THROW_SPEED = 14;
+/** The longest flight a throw takes, s, and the fastest throw that keeps to it, m/s. */
+export const MAX_FLIGHT = 1;
+export const FASTEST_THROW = 30;
+
 /**
- * Initial velocity that carries a box thrown from `from` to `target` in a ballistic arc, flying
- * at about `speed` m/s: aim straight, and add the height gravity takes away during the flight.
+ * The speed of a throw over `distance` metres: THROW_SPEED, or faster for a target beyond
+ * THROW_SPEED·MAX_FLIGHT metres so that the flight stays within MAX_FLIGHT (up to
+ * FASTEST_THROW). The camera frames a wandering crowd from 20–40 m: at 14 m/s a box would fly
+ * for two or three seconds on an arc rising metres above the line of sight, and a walker's
+ * course would change on the way.
  */
-export function throwVelocity(from: THREE.Vector3, target: THREE.Vector3, speed = 14, gravity = 9.81): THREE.Vector3 {
-  const d = target.clone().sub(from);
-  const t = Math.max(0.05, d.length() / speed);
-  return d.divideScalar(t).add(new THREE.Vector3(0, 0.5 * gravity * t, 0));
+export function throwSpeed(distance: number): number {
+  return Math.min(FASTEST_THROW, Math.max(THROW_SPEED, distance / MAX_FLIGHT));
 }
 
 /**
- * Where to aim a box thrown from `from` at `speed` (throwVelocity's) to meet a target now at
- * `target` moving at constant `velocity`: the point p = target + velocity·t where t is the box's
- * flight time to p (|p − from| / speed), by fixed-point iteration, which converges when the
- * target moves slower than the box (a walker at 1 m/s, a box at 14 m/s: three rounds are within
- * millimetres). Leading the target is what makes a throw at a walking character hit it.
+ * Initial velocity that carries a box thrown from `from` to `target` in a ballistic arc, flying
+ * at about `speed` m/s: aim straight, and add the height gravity takes away during the flight.
+ * (A throw at a character is aimed by the simulation instead: gl_sim_throw_at.)
  */
-export function leadTarget(from: THREE.Vector3, target: THREE.Vector3, velocity: THREE.Vector3, speed = 14): THREE.Vector3 {
-  const aim = target.clone();
-  for (let i = 0; i < 4; i++) {
-    const t = Math.max(0.05, aim.distanceTo(from) / speed);
-    aim.copy(target).addScaledVector(velocity, t);
-  }
-  return aim;
+export function throwVelocity(from: THREE.Vector3, target: THREE.Vector3, speed = THROW_SPEED, gravity = 9.81): THREE.Vector3 {
+  const d = target.clone().sub(from);
+  const t = Math.max(0.05, d.length() / speed);
+  return d.divideScalar(t).add(new THREE.Vector3(0, 0.5 * gravity * t, 0));
 }

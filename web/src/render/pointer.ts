@@ -1,10 +1,13 @@
 // What the pointer does to the scene: click a character to select it, click the ground to
-// throw a box there (shift-click throws at whatever is under the pointer, characters included),
-// press on a body and drag to pull it on a spring. Orbiting the camera keeps the remaining
-// gestures (dragging the ground, wheel, right button).
+// throw a box there (shift-click throws at whatever is under the pointer, characters included:
+// at a character, the simulation aims the box at where it will be when the box arrives), press
+// on a body and drag to pull it on a spring. Orbiting the camera keeps the remaining
+// gestures (dragging the ground, wheel, right button). On a touch screen a finger never holds a
+// body: one finger orbits and two pinch wherever they land (a pinch whose finger landed on a
+// character used to pull it instead of zooming), and a tap still selects or throws.
 import * as THREE from 'three';
 import type { CrowdMesh } from './crowd-mesh';
-import { leadTarget, pickBody, throwVelocity } from './picking';
+import { pickBody, throwSpeed, throwVelocity } from './picking';
 import type { Stage } from './stage';
 import type { SceneCommand, Vec3 } from '../sim/protocol';
 import { groundHeight, intersectGround } from '../sim/terrain-grid';
@@ -12,8 +15,6 @@ import { groundHeight, intersectGround } from '../sim/terrain-grid';
 export interface PointerActions {
   send(command: SceneCommand): void;
   select(id: number | null): void;
-  /** Character `id`'s velocity (m/s, world), to lead a throw at it; null if unknown. */
-  velocityOf?(id: number): THREE.Vector3 | null;
 }
 
 /** Pointer travel (CSS pixels) below which a press and release is a click, not a drag. */
@@ -31,6 +32,11 @@ export class PointerInteraction {
     y: number;
     pointer: number;
     hit: { id: number; segment: number; local: THREE.Vector3; point: THREE.Vector3 } | null;
+    /** The press holds the body hit (a mouse or pen on a character): a drag pulls it. */
+    holds: boolean;
+    touch: boolean;
+    /** Another finger was down when this one pressed: a gesture (a pinch), never a tap. */
+    gesture: boolean;
     dragging: boolean;
     plane: THREE.Plane;
   } | null = null;
@@ -78,7 +84,12 @@ export class PointerInteraction {
     const ray = this.ray(event);
     const hit = this.pickCharacter(ray);
     const onCharacter = hit && hit.owner >= 0 && !event.shiftKey;
-    if (onCharacter) {
+    // (Touches only: a finger's release always reaches the canvas, which holds it implicitly, so
+    // a press still recorded is a finger still down.)
+    const touch = event.pointerType === 'touch';
+    const gesture = touch && this.press !== null && this.press.touch && this.press.pointer !== event.pointerId;
+    const holds = Boolean(onCharacter) && !touch;
+    if (holds) {
       // Ours: keep OrbitControls from rotating the view while a body is held.
       event.stopImmediatePropagation();
       this.stage.controls.enabled = false;
@@ -91,6 +102,9 @@ export class PointerInteraction {
       y: event.clientY,
       pointer: event.pointerId,
       hit: onCharacter ? { id: hit.owner, segment: hit.segment, local: hit.local, point: hit.point } : null,
+      holds,
+      touch,
+      gesture,
       dragging: false,
       plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit?.point ?? new THREE.Vector3()),
     };
@@ -98,7 +112,7 @@ export class PointerInteraction {
 
   private move(event: PointerEvent): void {
     const press = this.press;
-    if (!press || event.pointerId !== press.pointer || !press.hit) return;
+    if (!press || event.pointerId !== press.pointer || !press.hit || !press.holds) return;
     if (!press.dragging && Math.hypot(event.clientX - press.x, event.clientY - press.y) < CLICK_SLOP) return;
     press.dragging = true;
     const target = this.ray(event).intersectPlane(press.plane, new THREE.Vector3());
@@ -118,16 +132,22 @@ export class PointerInteraction {
       this.actions.send({ type: 'endDrag' });
       return;
     }
-    if (Math.hypot(event.clientX - press.x, event.clientY - press.y) >= CLICK_SLOP) return; // an orbit
+    // An orbit or a pinch.
+    if (press.gesture || Math.hypot(event.clientX - press.x, event.clientY - press.y) >= CLICK_SLOP) return;
     if (press.hit) {
       this.actions.select(press.hit.id);
       return;
     }
-    // A click on the ground (or a shift-click anywhere): throw a box at that point.
+    // A click on the ground (or a shift-click anywhere): throw a box at that point, or at the
+    // character under the pointer.
     const ray = this.ray(event);
     const hit = event.shiftKey ? this.pickCharacter(ray) : null;
+    if (hit && hit.owner >= 0) {
+      this.throwAtCharacter(hit.owner, hit.segment, hit.local, hit.point);
+      return;
+    }
     const target = hit ? hit.point : this.groundPoint(ray);
-    if (target) this.throwAt(target, hit && hit.owner >= 0 ? this.actions.velocityOf?.(hit.owner) : null);
+    if (target) this.throwAt(target);
   }
 
   /** Where a ray meets the ground as the simulation has it (slopes and bumps included). */
@@ -144,16 +164,30 @@ export class PointerInteraction {
     this.stage.controls.enabled = true;
   }
 
-  /**
-   * Throws a box from just in front of the camera so that it lands on `target`, or, for a target
-   * moving at `moving` m/s, where the target will be when the box arrives (leadTarget).
-   */
-  throwAt(target: THREE.Vector3, moving?: THREE.Vector3 | null): void {
+  /** Where a throw towards `target` starts: just in front of the camera. */
+  private throwFrom(target: THREE.Vector3): THREE.Vector3 {
     const camera = this.stage.camera.position;
-    const from = camera.clone().add(target.clone().sub(camera).normalize().multiplyScalar(1.0));
-    const aim = moving ? leadTarget(from, target, moving) : target;
-    const velocity = throwVelocity(from, aim);
+    return camera.clone().add(target.clone().sub(camera).normalize().multiplyScalar(1.0));
+  }
+
+  /** Throws a box from just in front of the camera so that it lands on `target` (a point that stays put). */
+  throwAt(target: THREE.Vector3): void {
+    const from = this.throwFrom(target);
+    const velocity = throwVelocity(from, target, throwSpeed(from.distanceTo(target)));
     this.actions.send({ type: 'throwBox', from: toVec3(from), velocity: toVec3(velocity), half: BOX_HALF });
+  }
+
+  /**
+   * Throws a box at point `local` of segment `segment` of character `id`, seen at `point`. The
+   * frame on screen is a frame time and a worker round trip older than the simulation the box
+   * flies in, so the page names what was clicked and the simulation aims, from the character's
+   * state when the throw happens, at where that point will be when the box arrives
+   * (gl_sim_throw_at).
+   */
+  throwAtCharacter(id: number, segment: number, local: THREE.Vector3, point: THREE.Vector3): void {
+    const from = this.throwFrom(point);
+    const speed = throwSpeed(from.distanceTo(point));
+    this.actions.send({ type: 'throwAt', from: toVec3(from), id, segment, local: toVec3(local), speed, half: BOX_HALF });
   }
 }
 

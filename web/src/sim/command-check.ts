@@ -18,7 +18,10 @@ import {
   MAX_JSON_ARRAY,
   MAX_JSON_BYTES,
   MAX_JSON_STRING,
+  MAX_THROW_HALF,
   MAX_THROW_SPEED,
+  MIN_AIM_SPEED,
+  MIN_THROW_HALF,
 } from './limits';
 import type { SceneCommand, SimCommand } from './protocol';
 import { TERRAIN_KINDS } from './terrain-grid';
@@ -141,8 +144,17 @@ const SCENE_RULES: Record<SceneCommand['type'], (c: Fields) => SceneCommand> = {
   throwBox: (c) => {
     const velocity = vec3(c.velocity, 'velocity', MAX_THROW_SPEED);
     if (Math.hypot(...velocity) > MAX_THROW_SPEED) throw new Refused(`velocity: faster than ${MAX_THROW_SPEED} m/s`);
-    return { type: 'throwBox', from: vec3(c.from, 'from', MAX_COORDINATE), velocity, half: number(c.half, 'half', 0.03, 0.5) };
+    return { type: 'throwBox', from: vec3(c.from, 'from', MAX_COORDINATE), velocity, half: number(c.half, 'half', MIN_THROW_HALF, MAX_THROW_HALF) };
   },
+  throwAt: (c) => ({
+    type: 'throwAt',
+    from: vec3(c.from, 'from', MAX_COORDINATE),
+    id: id(c.id),
+    segment: integer(c.segment, 'segment', 0, 1024),
+    local: vec3(c.local, 'local', MAX_DRAG_LOCAL),
+    speed: number(c.speed, 'speed', MIN_AIM_SPEED, MAX_THROW_SPEED),
+    half: number(c.half, 'half', MIN_THROW_HALF, MAX_THROW_HALF),
+  }),
   drag: (c) => ({
     type: 'drag',
     id: id(c.id),

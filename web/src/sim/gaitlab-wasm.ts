@@ -58,6 +58,8 @@ export interface GaitlabModule {
   _gl_sim_set_goal(sim: number, id: number, speed: number, turnRate: number): number;
   _gl_throw_defaults(settings: number): void;
   _gl_sim_throw_box(sim: number, settings: number): number;
+  _gl_throw_at_defaults(settings: number): void;
+  _gl_sim_throw_at(sim: number, settings: number): number;
   _gl_drag_defaults(settings: number): void;
   _gl_sim_drag(sim: number, settings: number): number;
   _gl_sim_end_drag(sim: number): void;
@@ -148,6 +150,10 @@ export const MODE = { serial: 0, controller: 1, full: 2 } as const;
  */
 export const STRUCTS = {
   gl_throw_settings: { size: 56, fields: { from: [0, 'f64x3'], velocity: [24, 'f64x3'], half: [48, 'f64'] } },
+  gl_throw_at_settings: {
+    size: 72,
+    fields: { id: [0, 'i32'], segment: [4, 'i32'], from: [8, 'f64x3'], local: [32, 'f64x3'], speed: [56, 'f64'], half: [64, 'f64'] },
+  },
   gl_drag_settings: { size: 56, fields: { id: [0, 'i32'], segment: [4, 'i32'], local: [8, 'f64x3'], target: [32, 'f64x3'] } },
   gl_opt_settings: {
     size: 20,
@@ -427,6 +433,17 @@ export class Simulation {
     const m = this.module;
     return withStruct(m, STRUCTS.gl_throw_settings, (p) => m._gl_throw_defaults(p), { from, velocity, half },
       (p) => this.check('gl_sim_throw_box', m._gl_sim_throw_box(this.sim, p)));
+  }
+
+  /**
+   * Throws a box from `from` at character `id`, aimed by the simulation at where point `local`
+   * of its segment `segment` will be when the box, covering the distance at `speed` m/s,
+   * arrives (gl_sim_throw_at); returns its id.
+   */
+  throwAt(from: Vec3, id: number, segment: number, local: Vec3, speed: number, half: number): number {
+    const m = this.module;
+    return withStruct(m, STRUCTS.gl_throw_at_settings, (p) => m._gl_throw_at_defaults(p), { id, segment, from, local, speed, half },
+      (p) => this.check('gl_sim_throw_at', m._gl_sim_throw_at(this.sim, p)));
   }
 
   drag(id: number, segment: number, local: Vec3, target: Vec3): void {

@@ -51,6 +51,13 @@ export type SceneCommand =
   | { type: 'wander'; on: boolean; id?: number }
   /** A box of half size `half` (m) from `from` with `velocity` (m/s). */
   | { type: 'throwBox'; from: Vec3; velocity: Vec3; half: number }
+  /**
+   * A box of half size `half` thrown from `from` at character `id` (a shift-click on it): the
+   * simulation aims it, from the character's state when the command is applied, at where point
+   * `local` (segment frame, m) of its segment `segment` will be when the box, covering the
+   * distance at `speed` m/s, arrives (gl_sim_throw_at).
+   */
+  | { type: 'throwAt'; from: Vec3; id: number; segment: number; local: Vec3; speed: number; half: number }
   /** Holds point `local` (segment frame) of segment `segment` of character `id` on a spring to `target`. */
   | { type: 'drag'; id: number; segment: number; local: Vec3; target: Vec3 }
   | { type: 'endDrag' }

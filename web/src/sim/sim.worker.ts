@@ -358,6 +358,9 @@ class WorkerScene {
       case 'throwBox':
         sim.throwBox(command.from, command.velocity, command.half);
         return;
+      case 'throwAt':
+        sim.throwAt(command.from, command.id, command.segment, command.local, command.speed, command.half);
+        return;
       case 'drag':
         sim.drag(command.id, command.segment, command.local, command.target);
         return;

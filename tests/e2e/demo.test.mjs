@@ -11,6 +11,7 @@ import http from 'node:http';
 import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
 import { chromium } from 'playwright-core';
+import { isDeepStrictEqual } from 'node:util';
 import { openRecordedPage, PAGE_TIMEOUT, repoDir, resultsDir, startBrowser } from './browser.mjs';
 
 const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
@@ -210,19 +211,25 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const gaitSelect = page.locator('.lil-controller', { hasText: 'quadruped gait' }).locator('select');
     const simTime = async () => (await stats(page)).simTime;
 
+    // A gait reaches the simulation through the worker: wait for it (frames come seconds apart
+    // under load), then compare exactly.
+    const gaitReaches = async (id, params, what) => {
+      const deadline = Date.now() + PAGE_TIMEOUT;
+      let now;
+      do {
+        now = (await page.evaluate((i) => window.gaitlab.getGait(i), id)).params;
+        if (isDeepStrictEqual(now, params)) return;
+        await page.waitForTimeout(250);
+      } while (Date.now() < deadline);
+      assert.deepEqual(now, params, what);
+    };
     await gaitSelect.selectOption('walk');
-    await page.waitForTimeout(1000);
-    for (const id of quadrupeds) {
-      assert.deepEqual((await page.evaluate((i) => window.gaitlab.getGait(i), id)).params, walk.params, `quadruped #${id} walks with the walk preset`);
-    }
+    for (const id of quadrupeds) await gaitReaches(id, walk.params, `quadruped #${id} walks with the walk preset`);
     const switched = await simTime();
     await page.waitForFunction((t0) => window.gaitlab.stats().simTime >= t0 + 5, switched, { timeout: PAGE_TIMEOUT, polling: 250 });
     await gaitSelect.selectOption('trot');
-    await page.waitForTimeout(1000);
     const trot = await page.evaluate(() => window.gaitlab.presetGait('quadruped'));
-    for (const id of quadrupeds) {
-      assert.deepEqual((await page.evaluate((i) => window.gaitlab.getGait(i), id)).params, trot.params, `quadruped #${id} trots again`);
-    }
+    for (const id of quadrupeds) await gaitReaches(id, trot.params, `quadruped #${id} trots again`);
     const back = await simTime();
     await page.waitForFunction((t0) => window.gaitlab.stats().simTime >= t0 + 5, back, { timeout: PAGE_TIMEOUT, polling: 250 });
     const fallen = (await freshCharacters(page)).filter((c) => c.fallen).map((c) => `${c.type} #${c.id}`);

@@ -82,7 +82,7 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
     if (hw < 5) assert.match(await page.locator('.warn').innerText(), /above this device/);
     await page.getByRole('button', { name: 'Run', exact: true }).click();
     await page.waitForFunction(() => window.gaitlabBench.state === 'running');
-    await page.getByRole('button', { name: 'Cancel' }).click();
+    await page.getByRole('button', { name: 'Cancel', exact: true }).click();
     assert.equal(await waitFor(page, ['cancelled', 'done']), 'cancelled');
     await page.close();
   });

@@ -480,7 +480,8 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     // A file of schema version 1 is migrated by the module, not refused.
     const old = path.join(resultsDir, 'version-1-gait.json');
     const { 'gains.swingTargetRate': _, ...v1params } = exported.params;
-    fs.writeFileSync(old, JSON.stringify({ ...exported, version: 1, params: { ...v1params, 'legFrame.supportGain': 800 } }));
+    const { speed: _speed, keys: _keys, ...unkeyed } = exported; // speed keys came with schema 4
+    fs.writeFileSync(old, JSON.stringify({ ...unkeyed, version: 1, params: { ...v1params, 'legFrame.supportGain': 800 } }));
     const [oldChooser] = await Promise.all([page.waitForEvent('filechooser'), page.getByRole('button', { name: 'Import JSON' }).click()]);
     await oldChooser.setFiles(old);
     await page.getByRole('status').getByText('Imported version-1-gait.json.').waitFor({ timeout: PAGE_TIMEOUT });

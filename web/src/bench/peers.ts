@@ -42,7 +42,7 @@ export function peersSection(hook: PeersHook, params: URLSearchParams): HTMLElem
   const roundsField = field('peerRounds', 'Rounds', '3');
   const settle = Math.max(0, Number(params.get('peerSettle') ?? 30) || 0);
   const runButton = el('button', { textContent: 'Compare' });
-  const cancelButton = el('button', { textContent: 'Cancel', disabled: true });
+  const cancelButton = el('button', { textContent: 'Cancel comparison', disabled: true });
   const progress = el('progress', { max: 1, value: 0 });
   const status = el('span', { textContent: 'Ready.' });
   const results = el('div');

@@ -283,8 +283,7 @@ int gl_sim_set_params(void* s, int characterId, int kind, const char* text) {
   GaitFile file;
   if (const auto error = parseGaitFile(text ? text : "", c, &file))
     return refuse(GL_ERR_INVALID_PARAMS, error->describe());
-  const Gait gait = file.gait();
-  for (int i : targets) simulation.controller(i).setGait(gait);
+  for (int i : targets) simulation.controller(i).setGait(file.gait);
   return GL_OK;
 }
 
@@ -516,13 +515,13 @@ void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, cons
   o.seed = settings->seed;
   o.threads = clampThreads(settings->threads);
   gait::GaitFile start;
-  start.params = gait::defaultParams(c);
+  start.gait = gait::Gait::single(gait::defaultParams(c));
   if (startJson) {
     if (const auto error = gait::parseGaitFile(startJson, c, &start))
       return refuse<void*>(nullptr, "start: " + error->describe());
   }
   // The search tunes the start's primary key ("params"); its other speed keys walk with it.
-  o.gait = startJson ? start.gait() : gait::defaultGait(c);
+  o.gait = startJson ? start.gait : gait::defaultGait(c);
   o.key = o.gait.primary;
   if (objectiveJson) {
     if (const auto error = gait::checkJsonText(objectiveJson))

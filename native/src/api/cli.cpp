@@ -162,7 +162,7 @@ int walk(int argc, char** argv) {
   if (o.values.count("--params")) {
     if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
     chosen = file.character;
-    gait = file.gait();
+    gait = file.gait;
     w.gait = &gait;
   }
   const gait::Character c = chosen.value_or(gait::Character::Biped);
@@ -340,7 +340,7 @@ int optimizeCommand(int argc, char** argv) {
   }
   optimize::SearchOptions search;
   search.character = chosen.value_or(gait::Character::Biped);
-  search.gait = o.values.count("--params") ? start.gait() : gait::defaultGait(search.character);
+  search.gait = o.values.count("--params") ? start.gait : gait::defaultGait(search.character);
   search.key = search.gait.primary;
   if (o.values.count("--key")) {
     double speed = 0;

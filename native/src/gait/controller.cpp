@@ -134,8 +134,9 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   desiredVelocity_ = rampDesiredVelocity(desiredVelocity_, Vector3d(0, 0, goal_.speed),
                                          params_.maxAcceleration, dt);
   // Speed keys (gait/speed_keys.h): the parameters follow the desired speed as it ramps. With one
-  // key there is nothing to blend.
-  if (gait_.keys.size() > 1 && std::abs(desiredVelocity_.z()) != blendedAt_) blendAt(std::abs(desiredVelocity_.z()));
+  // key there is nothing to blend, nor while the speed stays below the first key or above the
+  // last (a crowd ramping up from 0 to its cruise speed below the first key copies nothing).
+  if (gait_.keys.size() > 1 && !gait_.heldAlike(desiredVelocity_.z(), blendedAt_)) blendAt(std::abs(desiredVelocity_.z()));
   // Speed tracking (speedIntegralGain, beyond the thesis): F_v = K_v (v_d − v) alone leaves a
   // speed error that depends on the speed (the biped walked 0.92 m/s at 1.0 and 1.53 at 1.4,
   // controller-notes §14). The velocity F_v aims at is v_d plus the integral of that error. Below

@@ -19,7 +19,7 @@ Gait loadPreset(Character c) {
                  error->describe().c_str());
     std::abort();
   }
-  return file.gait();
+  return file.gait;
 }
 
 }  // namespace

@@ -290,33 +290,26 @@ std::optional<ParamsError> parseGaitFile(const std::string& text, std::optional<
   // Parse into a copy of the target: a refused file leaves *out as it was.
   GaitFile file;
   file.character = *character;
-  file.params = out->params;
+  SpeedKey primary{0.0, out->gait.primaryParams()};
+  std::vector<SpeedKey> others;
   if (doc.contains("speed")) {
-    if (auto error = readSpeed(doc["speed"], "speed", &file.speed)) return error;
+    if (auto error = readSpeed(doc["speed"], "speed", &primary.speed)) return error;
   }
   if (!doc.contains("params")) return ParamsError{"params", "missing"};
-  if (auto error = readParams(*character, doc["params"], version, "", &file.params)) return error;
+  if (auto error = readParams(*character, doc["params"], version, "", &primary.params)) return error;
   if (doc.contains("keys")) {
-    if (auto error = readKeys(*character, doc["keys"], version, file.params, file.speed, &file.keys)) return error;
+    if (auto error = readKeys(*character, doc["keys"], version, primary.params, primary.speed, &others)) return error;
   }
   if (doc.contains("meta")) file.meta = doc["meta"];
+  file.gait = Gait::of(std::move(primary), std::move(others));
   *out = std::move(file);
   return std::nullopt;
-}
-
-Gait GaitFile::gait() const {
-  Gait g;
-  g.keys = keys;
-  g.keys.push_back({speed, params});
-  std::sort(g.keys.begin(), g.keys.end(), [](const SpeedKey& a, const SpeedKey& b) { return a.speed < b.speed; });
-  g.primary = g.keyAt(speed);
-  return g;
 }
 
 std::optional<ParamsError> normalizeGaitFile(const std::string& text, std::string* out) {
   GaitFile file;
   if (auto error = parseGaitFile(text, std::nullopt, &file)) return error;
-  *out = gaitFileJson(file.character, file.gait(), file.meta, -1);
+  *out = gaitFileJson(file.character, file.gait, file.meta, -1);
   return std::nullopt;
 }
 
@@ -347,29 +340,28 @@ std::optional<ParamsError> applyGaitPatch(Character c, const std::string& text, 
   if (auto error = parseJson(text, &patch)) return error;
   if (!patch.is_object())
     return ParamsError{"", "expected a JSON object of parameter values, got " + typeName(patch)};
-  GaitFile file;  // the gait as a file: its primary key, the others; rebuilt into *gait at the end
-  file.character = c;
-  file.speed = gait->keys[gait->primary].speed;
-  file.params = gait->primaryParams();
+  // The primary key and the others, as a file has them; the gait is rebuilt from them at the end.
+  SpeedKey primary = gait->keys[gait->primary];
+  std::vector<SpeedKey> others;
   for (size_t i = 0; i < gait->keys.size(); ++i)
-    if (static_cast<int>(i) != gait->primary) file.keys.push_back(gait->keys[i]);
+    if (static_cast<int>(i) != gait->primary) others.push_back(gait->keys[i]);
   json params = json::object();
   for (const auto& item : patch.items()) {
     if (item.key() != "speed" && item.key() != "keys") params[item.key()] = item.value();
   }
   if (patch.contains("speed")) {
-    if (auto error = readSpeed(patch["speed"], "speed", &file.speed)) return error;
+    if (auto error = readSpeed(patch["speed"], "speed", &primary.speed)) return error;
   }
-  if (auto error = applyParamsPatch(c, params.dump(), &file.params)) return error;
+  if (auto error = applyParamsPatch(c, params.dump(), &primary.params)) return error;
   if (patch.contains("keys")) {
-    if (auto error = readKeys(c, patch["keys"], kGaitFormatVersion, file.params, file.speed, &file.keys)) return error;
+    if (auto error = readKeys(c, patch["keys"], kGaitFormatVersion, primary.params, primary.speed, &others)) return error;
   } else {
-    for (size_t i = 0; i < file.keys.size(); ++i) {
-      if (std::abs(file.keys[i].speed - file.speed) <= 1e-9)
-        return ParamsError{"speed", "another key is already tuned at " + num(file.speed) + " m/s"};
+    for (const SpeedKey& other : others) {
+      if (std::abs(other.speed - primary.speed) <= 1e-9)
+        return ParamsError{"speed", "another key is already tuned at " + num(primary.speed) + " m/s"};
     }
   }
-  *gait = file.gait();
+  *gait = Gait::of(std::move(primary), std::move(others));
   return std::nullopt;
 }
 

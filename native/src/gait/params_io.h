@@ -42,13 +42,9 @@ struct ParamsError {
 
 struct GaitFile {
   Character character = Character::Biped;
-  double speed = 0;       // m/s, the speed `params` is tuned for
-  GaitParams params;      // "params": the primary key
-  std::vector<SpeedKey> keys;  // "keys": the others, by increasing speed
+  // Every key in speed order; the primary is the file's "speed" and "params", the others its "keys".
+  Gait gait = Gait::single(GaitParams{});
   nlohmann::json meta = nlohmann::json::object();
-
-  // All keys in speed order, `params` among them as the primary.
-  Gait gait() const;
 };
 
 // Whether `text` is JSON within the limits of api/limits.h (bytes, nesting depth, string and

@@ -1,5 +1,6 @@
 #include "gait/speed_keys.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
@@ -16,6 +17,24 @@ int Gait::keyAt(double speed) const {
   for (size_t i = 0; i < keys.size(); ++i)
     if (std::abs(keys[i].speed - speed) <= 1e-9) return static_cast<int>(i);
   return -1;
+}
+
+bool Gait::heldAlike(double a, double b) const {
+  a = std::abs(a);
+  b = std::abs(b);
+  if (a == b) return true;
+  if (!(a > keys.front().speed) && !(b > keys.front().speed)) return true;  // also NaN, as paramsAtSpeed
+  return a >= keys.back().speed && b >= keys.back().speed;
+}
+
+Gait Gait::of(SpeedKey primary, std::vector<SpeedKey> others) {
+  Gait g;
+  const double primarySpeed = primary.speed;
+  g.keys = std::move(others);
+  g.keys.push_back(std::move(primary));
+  std::sort(g.keys.begin(), g.keys.end(), [](const SpeedKey& a, const SpeedKey& b) { return a.speed < b.speed; });
+  g.primary = g.keyAt(primarySpeed);
+  return g;
 }
 
 void paramsAtSpeed(Character c, const Gait& gait, double speed, GaitParams* out) {

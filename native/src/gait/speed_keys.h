@@ -42,6 +42,11 @@ struct Gait {
   GaitParams& primaryParams() { return keys[primary].params; }
   // The key tuned at `speed` (within 1e-9 m/s), or -1.
   int keyAt(double speed) const;
+  // Whether paramsAtSpeed gives the same parameters at speeds `a` and `b`: both at or below the
+  // first key's speed, or both at or above the last's (held there), or the same speed.
+  bool heldAlike(double a, double b) const;
+  // The gait of `primary` and `others` (speeds distinct), its keys put in speed order.
+  static Gait of(SpeedKey primary, std::vector<SpeedKey> others);
 };
 
 // The parameters in effect at desired speed `speed` (its magnitude: a gait has no keys for walking

@@ -57,7 +57,7 @@ TEST(ParamsCApi, SetsOneCharacterAndReadsItBack) {
   sim::Simulation* s = &api::simulationOf(sim);
   gait::GaitFile file;
   ASSERT_FALSE(gait::parseGaitFile(gl_sim_get_params(sim, biped), gait::Character::Biped, &file));
-  EXPECT_EQ(std::memcmp(&file.params, &s->controller(0).params(), sizeof(gait::GaitParams)), 0);
+  EXPECT_EQ(std::memcmp(&file.gait.primaryParams(), &s->controller(0).params(), sizeof(gait::GaitParams)), 0);
   gl_sim_destroy(sim);
 }
 

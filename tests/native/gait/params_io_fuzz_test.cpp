@@ -44,14 +44,15 @@ bool allFinite(Character c, GaitParams params) {
 // finite parameters. Returns the error's text ("" on success).
 std::string judge(const std::string& text) {
   GaitFile file;
-  file.params = defaultParams(Character::Biped);
-  const GaitParams before = file.params;
+  file.gait = Gait::single(defaultParams(Character::Biped));
+  const GaitParams before = file.gait.primaryParams();
   const auto error = parseGaitFile(text, std::nullopt, &file);
   if (error) {
-    EXPECT_EQ(std::memcmp(&before, &file.params, sizeof before), 0) << "a refused file changed the target";
+    EXPECT_EQ(file.gait.keys.size(), 1u) << "a refused file changed the target";
+    EXPECT_EQ(std::memcmp(&before, &file.gait.primaryParams(), sizeof before), 0) << "a refused file changed the target";
     return error->describe().empty() ? "(empty message)" : error->describe();
   }
-  EXPECT_TRUE(allFinite(file.character, file.params));
+  for (const SpeedKey& key : file.gait.keys) EXPECT_TRUE(allFinite(file.character, key.params));
   std::string normalized;
   EXPECT_FALSE(normalizeGaitFile(text, &normalized));
   return "";

@@ -39,7 +39,7 @@ TEST(GaitFile, ShippedPresetsLoadAndAreWhatTheBinaryEmbeds) {
     const auto error = parseGaitFile(text, c, &file);
     ASSERT_FALSE(error) << path << ": " << error->describe();
     EXPECT_EQ(file.character, c);
-    EXPECT_TRUE(sameBits(file.params, defaultParams(c)));
+    EXPECT_TRUE(sameBits(file.gait.primaryParams(), defaultParams(c)));
   }
 }
 
@@ -63,12 +63,12 @@ TEST(GaitFile, RoundTripsBitExactly) {
       GaitFile back;
       const auto error = parseGaitFile(gaitFileJson(c, p, {{"seed", trial}}), c, &back);
       ASSERT_FALSE(error) << error->describe();
-      EXPECT_TRUE(sameBits(back.params, p)) << characterName(c) << " trial " << trial;
+      EXPECT_TRUE(sameBits(back.gait.primaryParams(), p)) << characterName(c) << " trial " << trial;
       EXPECT_EQ(back.meta["seed"], trial);
       // Compact output reads back the same.
       GaitFile compact;
       ASSERT_FALSE(parseGaitFile(gaitFileJson(c, p, {}, -1), c, &compact));
-      EXPECT_TRUE(sameBits(compact.params, p));
+      EXPECT_TRUE(sameBits(compact.gait.primaryParams(), p));
     }
   }
 }
@@ -111,8 +111,8 @@ TEST(GaitFile, AVersion1FileIsMigrated) {
   ASSERT_FALSE(parseGaitFile(v1.dump(), Character::Quadruped, &migrated));
   v2["params"]["gains.swingTargetRate"] = 0.0;
   ASSERT_FALSE(parseGaitFile(v2.dump(), Character::Quadruped, &current));
-  EXPECT_TRUE(sameBits(migrated.params, current.params));
-  EXPECT_EQ(migrated.params.gains.swingTargetRate, 0.0);
+  EXPECT_TRUE(sameBits(migrated.gait.primaryParams(), current.gait.primaryParams()));
+  EXPECT_EQ(migrated.gait.primaryParams().gains.swingTargetRate, 0.0);
   // The migration is for version 1 only: the support gain is unknown in a version-2 file.
   v2["params"]["front.supportGain"] = 1500.0;
   const auto error = parseGaitFile(v2.dump(), Character::Quadruped, &current);
@@ -139,9 +139,9 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
   v3["params"]["legFrame.captureSideways"] = 0.05;
   v3["params"]["speedIntegralGain"] = 0.0;
   ASSERT_FALSE(parseGaitFile(v3.dump(), Character::Biped, &current));
-  EXPECT_TRUE(sameBits(migrated.params, current.params));
-  EXPECT_EQ(migrated.params.legFrames[0].capturePlacement, 0.0);
-  EXPECT_EQ(migrated.params.speedIntegralGain, 0.0);
+  EXPECT_TRUE(sameBits(migrated.gait.primaryParams(), current.gait.primaryParams()));
+  EXPECT_EQ(migrated.gait.primaryParams().legFrames[0].capturePlacement, 0.0);
+  EXPECT_EQ(migrated.gait.primaryParams().speedIntegralGain, 0.0);
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {
@@ -156,10 +156,9 @@ TEST(GaitFile, AVersion3FileIsMigrated) {
   GaitFile migrated, current;
   ASSERT_FALSE(parseGaitFile(v3.dump(), Character::Biped, &migrated));
   ASSERT_FALSE(parseGaitFile(v4.dump(), Character::Biped, &current));
-  EXPECT_TRUE(sameBits(migrated.params, current.params));
-  EXPECT_EQ(migrated.speed, 0.0);
-  EXPECT_TRUE(migrated.keys.empty());
-  EXPECT_EQ(migrated.gait().keys.size(), 1u);
+  EXPECT_TRUE(sameBits(migrated.gait.primaryParams(), current.gait.primaryParams()));
+  ASSERT_EQ(migrated.gait.keys.size(), 1u);
+  EXPECT_EQ(migrated.gait.keys[0].speed, 0.0);
   v3["keys"] = v4["keys"];
   const auto error = parseGaitFile(v3.dump(), Character::Biped, &migrated);
   ASSERT_TRUE(error);
@@ -228,16 +227,18 @@ TEST(GaitFile, RefusesBadFilesNamingTheFieldAndLeavesTheTargetUntouched) {
     SCOPED_TRACE(bad.what);
     // The target holds values of its own that a half-load would overwrite.
     GaitFile target;
-    target.params = defaultParams(Character::Biped);
-    target.params.period = 2.5;
-    target.params.legFrames[0].pitch = MotionGraph::of(0.1, 0.2, 0.3, 0.4);
-    target.params.legs[1].strikeTime = 0.25;
+    target.gait = Gait::single(defaultParams(Character::Biped));
+    GaitParams& params = target.gait.primaryParams();
+    params.period = 2.5;
+    params.legFrames[0].pitch = MotionGraph::of(0.1, 0.2, 0.3, 0.4);
+    params.legs[1].strikeTime = 0.25;
     const GaitFile before = target;
     const auto error = parseGaitFile(bad.make(preset), Character::Biped, &target);
     ASSERT_TRUE(error) << "accepted";
     EXPECT_EQ(error->field, bad.field) << error->describe();
     EXPECT_NE(error->message.find(bad.message), std::string::npos) << error->describe();
-    EXPECT_TRUE(sameBits(target.params, before.params)) << "half-loaded";
+    ASSERT_EQ(target.gait.keys.size(), 1u) << "half-loaded";
+    EXPECT_TRUE(sameBits(target.gait.primaryParams(), before.gait.primaryParams())) << "half-loaded";
     EXPECT_EQ(target.character, before.character);
   }
 }

@@ -67,6 +67,35 @@ TEST(SpeedKeys, FieldsAreLinearInSpeedBetweenKeysAndHeldBeyondThem) {
   EXPECT_TRUE(sameBits(p, fast));
 }
 
+// The controller skips the blend while the desired speed moves where the parameters are held:
+// heldAlike must say "alike" only where paramsAtSpeed gives the same bits, and must not where it
+// does not.
+TEST(SpeedKeys, HeldAlikeIsTrueExactlyWhereTheBlendIsTheSame) {
+  const Gait g = twoKeys();  // keys at 0.5 and 1.5 m/s
+  const double speeds[] = {-2.0, -0.3, 0.0, 0.2, 0.5, 0.7, 1.0, 1.5, 1.6, 3.0};
+  int alike = 0, differ = 0;
+  for (double a : speeds) {
+    for (double b : speeds) {
+      GaitParams pa, pb;
+      paramsAtSpeed(Character::Biped, g, a, &pa);
+      paramsAtSpeed(Character::Biped, g, b, &pb);
+      if (g.heldAlike(a, b)) {
+        EXPECT_TRUE(sameBits(pa, pb)) << a << " and " << b;
+        ++alike;
+      } else {
+        EXPECT_FALSE(sameBits(pa, pb)) << a << " and " << b;
+        ++differ;
+      }
+    }
+  }
+  EXPECT_GT(alike, 0);
+  EXPECT_GT(differ, 0);
+  EXPECT_TRUE(g.heldAlike(0.2, 0.4));
+  EXPECT_TRUE(g.heldAlike(1.6, 2.5));
+  EXPECT_FALSE(g.heldAlike(0.4, 0.6));
+  EXPECT_FALSE(g.heldAlike(1.4, 1.6));
+}
+
 TEST(SpeedKeys, AGaitFileCarriesItsKeysAndReadsBackBitExactly) {
   const Gait g = twoKeys();
   for (int primary : {0, 1}) {
@@ -75,10 +104,9 @@ TEST(SpeedKeys, AGaitFileCarriesItsKeysAndReadsBackBitExactly) {
     const std::string text = gaitFileJson(Character::Biped, h);
     GaitFile file;
     ASSERT_FALSE(parseGaitFile(text, Character::Biped, &file)) << text;
-    EXPECT_EQ(file.speed, h.keys[primary].speed);
-    EXPECT_TRUE(sameBits(file.params, h.keys[primary].params));
-    ASSERT_EQ(file.keys.size(), 1u);
-    const Gait back = file.gait();
+    const Gait& back = file.gait;
+    EXPECT_EQ(back.keys[back.primary].speed, h.keys[primary].speed);
+    EXPECT_TRUE(sameBits(back.primaryParams(), h.keys[primary].params));
     ASSERT_EQ(back.keys.size(), 2u);
     EXPECT_EQ(back.primary, primary);
     for (int i = 0; i < 2; ++i) {
@@ -131,13 +159,13 @@ TEST(SpeedKeys, BadKeysAreRefusedNamingTheFieldAndLeaveTheTargetUntouched) {
     json j = good;
     c.change(j);
     GaitFile target;
-    target.params.period = 0.123;
+    target.gait.primaryParams().period = 0.123;
     const auto error = parseGaitFile(j.dump(), Character::Biped, &target);
     ASSERT_TRUE(error) << c.what;
     EXPECT_EQ(error->field, c.field) << c.what;
     EXPECT_NE(error->message.find(c.message), std::string::npos) << c.what << ": " << error->message;
-    EXPECT_EQ(target.params.period, 0.123) << c.what;
-    EXPECT_TRUE(target.keys.empty()) << c.what;
+    EXPECT_EQ(target.gait.primaryParams().period, 0.123) << c.what;
+    EXPECT_EQ(target.gait.keys.size(), 1u) << c.what;
   }
 }
 

@@ -87,7 +87,7 @@ TEST(BodyStance, TheQuadrupedStandsOnFourFeet) {
       std::string(GAITLAB_SOURCE_DIR) + "/tests/native/fixtures/quadruped-trot-s10.json",
       gaitlab::gait::Character::Quadruped, &stand);
   ASSERT_FALSE(error) << error->describe();
-  gaitlab::gait::GaitParams p = stand.params;
+  gaitlab::gait::GaitParams p = stand.gait.primaryParams();
   for (auto& leg : p.legs) leg.dutyFactor = 1.0;  // clamped to the player's maximum
   sim.controller(0).setParams(p);
   sim.setGoal(0, {0.0, 0.0});
@@ -154,7 +154,7 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
   ASSERT_FALSE(error) << error->describe();
   WalkOptions o;
   o.character = Character::Quadruped;
-  const gaitlab::gait::Gait gait = walk.gait();
+  const gaitlab::gait::Gait gait = walk.gait;
   o.gait = &gait;
   o.speed = 0.3;
   o.seconds = 20;
@@ -168,7 +168,7 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
   double z = sim.character(0).segmentState(0).position.z();
   for (int part = 0; part < 4; ++part) {
     const bool walking = part % 2 == 0;
-    sim.controller(0).setParams(walking ? walk.params : trot);
+    sim.controller(0).setParams(walking ? walk.gait.primaryParams() : trot);
     sim.setGoal(0, {walking ? 0.3 : 0.6, 0.0});
     for (int step = 0; step < 5 * 120; ++step) {
       sim.step(1);

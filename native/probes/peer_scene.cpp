@@ -16,16 +16,7 @@
 #include <vector>
 
 #include "peers/reference_scene.h"
-
-namespace {
-
-double threadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
+#include "probe.h"
 
 int main(int argc, char** argv) {
   if (argc < 4) {
@@ -46,9 +37,9 @@ int main(int argc, char** argv) {
   for (int r = 0; r < rounds; ++r) {
     gaitlab::peers::ReferenceScene scene(character, characters, 1, shards);
     scene.step(30);  // the first contacts, as the peer benchmark settles them
-    const double t0 = threadSeconds();
+    const double t0 = gaitlab::probe::threadSeconds();
     scene.step(steps);
-    ms.push_back(1e3 * (threadSeconds() - t0) / steps);
+    ms.push_back(1e3 * (gaitlab::probe::threadSeconds() - t0) / steps);
   }
   std::sort(ms.begin(), ms.end());
   std::printf("{\"legs\": %d, \"characters\": %d, \"shards\": %d, \"steps\": %d, \"cpu_ms_per_step\": %.3f, \"min\": %.3f, \"max\": %.3f}\n",

@@ -19,22 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "probe.h"
 #include "sim/simulation.h"
-
-namespace {
-
-double threadSeconds() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + t.tv_nsec * 1e-9;
-}
-
-double quantile(std::vector<double> x, double q) {
-  std::sort(x.begin(), x.end());
-  return x[static_cast<size_t>(q * (x.size() - 1))];
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace gaitlab::sim;
@@ -48,7 +34,7 @@ int main(int argc, char** argv) {
   std::vector<int> shards;
   std::stringstream list(argv[4]);
   for (std::string s; std::getline(list, s, ',');) shards.push_back(std::atoi(s.c_str()));
-  const Crowd crowd = legs == "2" ? Crowd::Bipeds : legs == "4" ? Crowd::Quadrupeds : Crowd::Mixed;
+  const Crowd crowd = gaitlab::probe::crowdOf(legs);
 
   std::vector<std::unique_ptr<Simulation>> sims;
   std::vector<std::vector<double>> cpu(shards.size());
@@ -60,22 +46,22 @@ int main(int argc, char** argv) {
   for (int done = 0; done < steps; done += turn) {
     for (size_t v = 0; v < sims.size(); ++v) {
       for (int k = done; k < std::min(steps, done + turn); ++k) {
-        const double c0 = threadSeconds();
+        const double c0 = gaitlab::probe::threadSeconds();
         sims[v]->step(1);
-        const double c1 = threadSeconds();
+        const double c1 = gaitlab::probe::threadSeconds();
         if (k >= 20) cpu[v].push_back((c1 - c0) * 1e3);
       }
     }
   }
   std::printf("{\"legs\": \"%s\", \"characters\": %d, \"steps\": %d, \"turn\": %d, \"shards\": [", legs.c_str(),
               characters, steps, turn);
-  const double first = quantile(cpu[0], 0.5);
+  const double first = gaitlab::probe::quantile(cpu[0], 0.5);
   for (size_t v = 0; v < sims.size(); ++v) {
-    const double median = quantile(cpu[v], 0.5);
+    const double median = gaitlab::probe::quantile(cpu[v], 0.5);
     std::printf("%s\n  {\"shards\": %d, \"characters_per_shard\": %.1f, \"cpu_ms\": {\"p10\": %.3f, \"p50\": %.3f, "
                 "\"p90\": %.3f}, \"us_per_character\": %.2f, \"over_first\": %.3f, \"state_hash\": \"%s\"}",
                 v ? "," : "", sims[v]->shards(), static_cast<double>(characters) / sims[v]->shards(),
-                quantile(cpu[v], 0.1), median, quantile(cpu[v], 0.9), median * 1e3 / characters, median / first,
+                gaitlab::probe::quantile(cpu[v], 0.1), median, gaitlab::probe::quantile(cpu[v], 0.9), median * 1e3 / characters, median / first,
                 sims[v]->stateHash().c_str());
   }
   std::printf("]}\n");

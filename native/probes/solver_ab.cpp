@@ -16,22 +16,8 @@
 #include <ctime>
 #include <vector>
 
+#include "probe.h"
 #include "sim/simulation.h"
-
-namespace {
-
-double threadSeconds() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + t.tv_nsec * 1e-9;
-}
-
-double quantile(std::vector<double> x, double q) {
-  std::sort(x.begin(), x.end());
-  return x[static_cast<size_t>(q * (x.size() - 1))];
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 4) {
@@ -42,28 +28,28 @@ int main(int argc, char** argv) {
   const int characters = std::atoi(argv[2]), steps = std::atoi(argv[3]);
   const int shards = argc > 4 ? std::atoi(argv[4]) : std::min(gaitlab::sim::kCrowdShards, characters);
   using gaitlab::sim::Crowd;
-  const Crowd crowd = legs == "2" ? Crowd::Bipeds : legs == "4" ? Crowd::Quadrupeds : Crowd::Mixed;
+  const Crowd crowd = gaitlab::probe::crowdOf(legs);
   gaitlab::sim::Simulation sim(1, 1, shards);
   sim.crowdScene(crowd, characters, 4.0);
   std::vector<double> ms[2];  // [0] Bullet's sweep, [1] the fast one
   for (int s = 0; s < steps; ++s) {
     const bool fast = s % 2 == 1;
     sim.setFastSolver(fast);
-    const double t0 = threadSeconds();
+    const double t0 = gaitlab::probe::threadSeconds();
     sim.step(1);
-    const double t1 = threadSeconds();
+    const double t1 = gaitlab::probe::threadSeconds();
     if (s >= 20) ms[fast].push_back((t1 - t0) * 1e3);
   }
   std::printf("{\"legs\": \"%s\", \"characters\": %d, \"steps\": %d, \"shards\": %d,", legs.c_str(),
               characters, steps, shards);
   const char* names[2] = {"bullet", "fast"};
   for (int v = 0; v < 2; ++v) {
-    const double p50 = quantile(ms[v], 0.5);
+    const double p50 = gaitlab::probe::quantile(ms[v], 0.5);
     std::printf(" \"%s\": {\"cpu_ms_p50\": %.3f, \"cpu_ms_p10\": %.3f, \"cpu_ms_p90\": %.3f, "
                 "\"us_per_character_p50\": %.1f},",
-                names[v], p50, quantile(ms[v], 0.1), quantile(ms[v], 0.9), p50 * 1e3 / characters);
+                names[v], p50, gaitlab::probe::quantile(ms[v], 0.1), gaitlab::probe::quantile(ms[v], 0.9), p50 * 1e3 / characters);
   }
   std::printf(" \"ratio_p50\": %.3f, \"state_hash\": \"%s\"}\n",
-              quantile(ms[0], 0.5) / quantile(ms[1], 0.5), sim.stateHash().c_str());
+              gaitlab::probe::quantile(ms[0], 0.5) / gaitlab::probe::quantile(ms[1], 0.5), sim.stateHash().c_str());
   return 0;
 }

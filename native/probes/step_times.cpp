@@ -23,29 +23,15 @@
 #include <string>
 #include <vector>
 
+#include "probe.h"
 #include "sim/simulation.h"
 
 namespace {
-
-double threadSeconds() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + t.tv_nsec * 1e-9;
-}
 
 long involuntarySwitches() {
   rusage u;
   getrusage(RUSAGE_SELF, &u);
   return u.ru_nivcsw;
-}
-
-double quantile(std::vector<double> x, double q) {
-  if (x.empty()) return 0;
-  std::sort(x.begin(), x.end());
-  // Nearest rank, as gaitlab bench (sim/experiment.cpp).
-  size_t rank = static_cast<size_t>(q * x.size() + 0.999999);
-  if (rank == 0) rank = 1;
-  return x[std::min(x.size(), rank) - 1];
 }
 
 struct Sample {
@@ -55,9 +41,9 @@ struct Sample {
 };
 
 void printStats(const char* name, const std::vector<double>& x, bool comma = true) {
-  const double p50 = quantile(x, 0.5), p99 = quantile(x, 0.99);
+  const double p50 = gaitlab::probe::quantile(x, 0.5), p99 = gaitlab::probe::quantile(x, 0.99);
   std::printf("\"%s\": {\"n\": %zu, \"p50\": %.3f, \"p99\": %.3f, \"max\": %.3f, \"p99_over_p50\": %.2f}%s ",
-              name, x.size(), p50, p99, quantile(x, 1.0), p50 > 0 ? p99 / p50 : 0.0, comma ? "," : "");
+              name, x.size(), p50, p99, gaitlab::probe::quantile(x, 1.0), p50 > 0 ? p99 / p50 : 0.0, comma ? "," : "");
 }
 
 }  // namespace
@@ -74,7 +60,7 @@ int main(int argc, char** argv) {
   if (!parseMode(argv[4], &mode)) return 2;
   const int threads = std::atoi(argv[5]);
   const int runs = argc > 6 ? std::atoi(argv[6]) : 1;
-  const Crowd crowd = legs == "2" ? Crowd::Bipeds : legs == "4" ? Crowd::Quadrupeds : Crowd::Mixed;
+  const Crowd crowd = gaitlab::probe::crowdOf(legs);
   std::vector<Sample> samples;
   samples.reserve(static_cast<size_t>(steps) * runs);
   for (int run = 0; run < runs; ++run) {
@@ -83,11 +69,11 @@ int main(int argc, char** argv) {
     sim->setMode(mode);
     for (int s = 0; s < steps; ++s) {
       const long sw0 = involuntarySwitches();
-      const double c0 = threadSeconds();
+      const double c0 = gaitlab::probe::threadSeconds();
       const auto w0 = std::chrono::steady_clock::now();
       sim->step(1);
       const auto w1 = std::chrono::steady_clock::now();
-      const double c1 = threadSeconds();
+      const double c1 = gaitlab::probe::threadSeconds();
       const long sw1 = involuntarySwitches();
       samples.push_back({run, s, std::chrono::duration<double, std::milli>(w1 - w0).count(),
                          (c1 - c0) * 1e3, sw1 - sw0});
@@ -109,7 +95,7 @@ int main(int argc, char** argv) {
   for (int s = 0; s < steps; ++s) {
     std::vector<double> v;
     for (int run = 0; run < runs; ++run) v.push_back(samples[static_cast<size_t>(run) * steps + s].cpu);
-    byIndex.push_back(quantile(v, 0.5));
+    byIndex.push_back(gaitlab::probe::quantile(v, 0.5));
   }
   std::printf("{\"legs\": \"%s\", \"characters\": %d, \"steps\": %d, \"runs\": %d, \"mode\": \"%s\", "
               "\"threads\": %d, ", legs.c_str(), characters, steps, runs, modeName(mode), threads);

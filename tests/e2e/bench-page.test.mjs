@@ -6,17 +6,14 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, describe, it } from 'node:test';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
-import { startServer } from '../../scripts/serve.mjs';
+import { repoDir, resultsDir, startBrowser } from './browser.mjs';
 import { validate } from '../../bench/lib/analysis.mjs';
 
-const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
 const TIMEOUT = 180_000;
 
+let session;
 let server;
-let browser;
+let context;
 
 const tiny = 'legs=2,4&characters=1,2&threads=1,2&modes=serial,full&steps=8&runs=2';
 const state = (page) => page.evaluate(() => window.gaitlabBench.state);
@@ -34,16 +31,15 @@ async function waitFor(page, states, timeout = TIMEOUT) {
 
 describe('performance page', { timeout: TIMEOUT * 3 }, () => {
   before(async () => {
-    server = await startServer({ port: 0, quiet: true });
-    browser = await chromium.launch({ executablePath, headless: true, args: ['--no-sandbox'] });
+    session = await startBrowser({ viewport: { width: 1280, height: 900 } });
+    ({ server, context } = session);
   });
   after(async () => {
-    await browser?.close();
-    await server?.close();
+    await session?.close();
   });
 
   it('runs a tiny grid and offers the results as JSON and CSV', { timeout: TIMEOUT }, async () => {
-    const page = await browser.newPage({ acceptDownloads: true });
+    const page = await context.newPage();
     const errors = [];
     page.on('pageerror', (e) => errors.push(e.message));
     await page.goto(`${server.url}bench.html?${tiny}&autorun=1`, { waitUntil: 'load' });
@@ -76,7 +72,7 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
   });
 
   it('flags thread counts above the hardware and can cancel a run', { timeout: TIMEOUT }, async () => {
-    const page = await browser.newPage();
+    const page = await context.newPage();
     await page.goto(`${server.url}bench.html?legs=4&characters=30,40,50&threads=5&modes=full&steps=400&runs=3`, { waitUntil: 'load' });
     const hw = await page.evaluate(() => navigator.hardwareConcurrency);
     if (hw < 5) assert.match(await page.locator('.warn').innerText(), /above this device/);
@@ -88,7 +84,7 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
   });
 
   it('refuses a crowd larger than a simulation holds, before measuring anything', { timeout: TIMEOUT }, async () => {
-    const page = await browser.newPage();
+    const page = await context.newPage();
     await page.goto(`${server.url}bench.html?legs=4&characters=1,911&threads=1&modes=serial&steps=8&runs=1&autorun=1`, { waitUntil: 'load' });
     await page.waitForFunction(() => window.gaitlabBench.state === 'error', null, { timeout: TIMEOUT });
     assert.match(await page.evaluate(() => window.gaitlabBench.error), /911 quadrupeds is more than a simulation holds \([1-8]\d\d\)/); // as many as the module's heap affords (README, "Limits")
@@ -97,7 +93,7 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
   });
 
   it('answers "how many can this device run?" with one button: both capacities shown large, beside the reference machines', { timeout: TIMEOUT }, async () => {
-    const page = await browser.newPage();
+    const page = await context.newPage();
     const errors = [];
     page.on('pageerror', (e) => errors.push(e.message));
     // Each type's search cut to 6 s (the button's own limit is 50 s a type: under two minutes).
@@ -114,8 +110,7 @@ describe('performance page', { timeout: TIMEOUT * 3 }, () => {
     const size = await page.getByTestId('capacity-biped').evaluate((e) => parseFloat(getComputedStyle(e).fontSize));
     assert.ok(size >= 32, `shown large (${size} px)`);
     assert.match(await page.locator('.capacity table').innerText(), /AMD EPYC.*551.*188/s);
-    fs.mkdirSync(path.join(repoDir, 'test-results', 'e2e'), { recursive: true });
-    await page.screenshot({ path: path.join(repoDir, 'test-results', 'e2e', 'capacity.png'), fullPage: false });
+    await page.screenshot({ path: path.join(resultsDir, 'capacity.png'), fullPage: false });
     assert.deepEqual(errors, []);
     await page.close();
   });

@@ -5,27 +5,25 @@
 // business (bench/peers.mjs --browser).
 import assert from 'node:assert/strict';
 import { after, before, describe, it } from 'node:test';
-import { chromium } from 'playwright-core';
-import { startServer } from '../../scripts/serve.mjs';
+import { startBrowser } from './browser.mjs';
 
-const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
 const TIMEOUT = 120_000;
 
+let session;
 let server;
-let browser;
+let context;
 
 describe('performance page: beside Jolt Physics', { timeout: TIMEOUT }, () => {
   before(async () => {
-    server = await startServer({ port: 0, quiet: true });
-    browser = await chromium.launch({ executablePath, headless: true, args: ['--no-sandbox'] });
+    session = await startBrowser({ viewport: { width: 1280, height: 900 } });
+    ({ server, context } = session);
   });
   after(async () => {
-    await browser?.close();
-    await server?.close();
+    await session?.close();
   });
 
   it('times 20 quadrupeds with gaitlab and both Jolt builds on 1 thread, and gaitlab and Jolt\'s multithreaded build on 2', { timeout: TIMEOUT }, async () => {
-    const page = await browser.newPage();
+    const page = await context.newPage();
     const errors = [];
     page.on('pageerror', (e) => errors.push(e.message));
     await page.goto(`${server.url}bench.html?peerLegs=4&peerCharacters=20&peerThreads=1,2&peerSteps=8&peerRounds=1&peerSettle=2&peerAutorun=1`, { waitUntil: 'load' });

@@ -3,7 +3,7 @@
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
-//                          [--only criteria,sweep,ramp,pushes] [--jobs 2] [--step 0.1]
+//                          [--only criteria,sweep,ramp,pushes,boxes] [--jobs 2] [--step 0.1]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
 // gait file to measure instead of the preset: walking-<file name>.{json,md}). With --only, the
@@ -21,7 +21,10 @@
 //     standing drift under 0.1 m over the last 20 s;
 //   - pushes: the push ladder in three directions (lateral, forward, backward) at the leg frame,
 //     walking at the cruise speed and standing (goal 0): 20 pushes at random phases per impulse;
-//     the largest impulse survived every time and in ≥ 90 % of them.
+//     the largest impulse survived every time and in ≥ 90 % of them;
+//   - boxes: the box-hit trial (`gaitlab walk --box-hits`, native/src/sim/box_hits.h): boxes
+//     thrown as the demo throws them at random body parts of the character walking at its cruise
+//     speed and standing, 50 hits each; how many knocked it over (the goal: at most 1 in 5).
 // The walking criteria:
 //   - 60 s on flat ground at two goal speeds, one twice the other, without a fall;
 //   - mean speed within ±15 % of the goal; heading drift under 10° walking straight;
@@ -48,7 +51,7 @@ const opt = (name, fallback) => {
 const seconds = Number(opt('seconds', '60'));
 const jobs = Math.max(1, Number(opt('jobs', '2')));
 const sweepStep = Number(opt('step', '0.1'));
-const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes'];
+const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes'];
 const only = opt('only', SECTIONS.join(',')).split(',');
 for (const s of only) {
   if (!SECTIONS.includes(s)) {
@@ -77,6 +80,7 @@ const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 60, 80];  // N·s at the le
 const PUSH_EVERY = 2.5;                   // s: 20 pushes in 52 s
 const PUSH_DIRECTIONS = ['lateral', 'forward', 'backward'];
 const RAMP_SECONDS = 60, STAND_SECONDS = 20;
+const BOX_HITS = 50, BOX_FALLS_ALLOWED = 0.2;  // at most 1 in 5 hits may knock it over
 
 function walk(character, extra, wasm = false) {
   const argv = ['walk', '--character', character, '--json', ...(paramsFile ? ['--params', paramsFile] : []), ...extra.map(String)];
@@ -276,6 +280,24 @@ async function measurePushes(character) {
   return { ...stamp, ladders };
 }
 
+// The box-hit trial, walking at the cruise speed and standing: 50 hits each, each its own episode.
+async function measureBoxes(character) {
+  const { cruise } = GOALS[character];
+  const trials = await Promise.all([cruise, 0].map(async (speed) => {
+    process.stderr.write(`${character}: ${BOX_HITS} box hits at ${speed} m/s\n`);
+    const r = await walkAsync(character, ['--speed', speed, '--box-hits', BOX_HITS, '--seed', 7]);
+    const bySegment = {};
+    for (const h of r.hits) {
+      const s = (bySegment[h.segment] ??= { hits: 0, falls: 0 });
+      s.hits++;
+      s.falls += h.fell ? 1 : 0;
+    }
+    return { speed, throws: r.box_throws, hits: r.box_hits, falls: r.box_hit_falls, by_segment: bySegment,
+      met: r.box_hit_falls <= BOX_FALLS_ALLOWED * r.box_hits };
+  }));
+  return { ...stamp, box_half_m: 0.12, trials };
+}
+
 for (const character of characters) {
   const r = (report.characters[character] ??= {});
   const measured = await Promise.all([
@@ -283,6 +305,7 @@ for (const character of characters) {
     only.includes('sweep') ? measureSweep(character) : null,
     only.includes('ramp') ? measureRamp(character) : null,
     only.includes('pushes') ? measurePushes(character) : null,
+    only.includes('boxes') ? measureBoxes(character) : null,
   ]);
   SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
   // Results of the previous layout (criteria at the top level) are not carried on.
@@ -343,6 +366,16 @@ for (const [character, r] of Object.entries(report.characters)) {
     for (const l of pu.ladders) {
       lines.push(`| ${l.direction} | ${l.speed} | ${l.largest_every_time_n_s || 'none'} N·s | ${l.largest_90pct_n_s || 'none'} N·s | ` +
         `${l.rungs.map((p) => `${p.impulse}: ${p.survived}`).join(', ')} |`);
+    }
+    lines.push('');
+  }
+  const bx = r.boxes;
+  if (bx) {
+    lines.push(`### Box hits (boxes thrown as the demo throws them, ${2 * bx.box_half_m} m, 8.3 kg, 14–18 m/s, at random body parts; ${bx.measured.slice(0, 10)}, ${bx.commit})`, '',
+      '| goal m/s | hits (throws) | knocked over | at most 1 in 5? | falls / hits by body part (render order) |', '|---|---|---|---|---|');
+    for (const t of bx.trials) {
+      lines.push(`| ${t.speed} | ${t.hits} (${t.throws}) | ${t.falls} (${Math.round((100 * t.falls) / t.hits)} %) | ${t.met ? 'yes' : '**no**'} | ` +
+        `${Object.entries(t.by_segment).map(([k, s]) => `${k}: ${s.falls}/${s.hits}`).join(', ')} |`);
     }
     lines.push('');
   }

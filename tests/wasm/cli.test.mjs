@@ -37,6 +37,20 @@ test('native and WASM `walk` print the same JSON document shape', () => {
   assert.ok(ja.controller_us_per_step > 0 && jb.controller_us_per_step > 0);
 });
 
+test('`walk --box-hits` runs the box-hit trial, natively and as WASM, hit for hit the same', () => {
+  const args = ['walk', '--character', 'biped', '--speed', '0.5', '--box-hits', '3', '--seed', '4', '--json'];
+  const a = run(native, args);
+  const b = run(process.execPath, [...wasm, ...args]);
+  assert.equal(a.status, 0, a.stderr);
+  assert.equal(b.status, 0, b.stderr);
+  const ja = JSON.parse(a.stdout);
+  assert.equal(ja.box_hits, 3);
+  assert.equal(ja.hits.length, 3);
+  assert.ok(ja.box_throws >= 3);
+  assert.equal(ja.box_hit_falls, ja.hits.filter((h) => h.fell).length);
+  assert.deepEqual(JSON.parse(b.stdout).hits.map((h) => h.segment), ja.hits.map((h) => h.segment));
+});
+
 test('--version works natively and as WASM', () => {
   assert.match(run(native, ['--version']).stdout, /^gaitlab \d+\.\d+\.\d+/);
   assert.match(run(process.execPath, [...wasm, '--version']).stdout, /^gaitlab \d+\.\d+\.\d+/);
@@ -49,6 +63,7 @@ for (const [args, message] of [
   [['walk', '--speed', '99'], /--speed: 99 is outside/],
   [['walk', '--bogus'], /unknown option '--bogus'/],
   [['walk', '--seed'], /option --seed needs a value/],
+  [['walk', '--box-hits', '0'], /--box-hits: 0 is outside/],
   [['fly'], /unknown command 'fly'/],
 ]) {
   test(`refuses ${args.join(' ')}`, () => {

@@ -30,6 +30,7 @@
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
 #include "optimize/settings.h"
+#include "sim/box_hits.h"
 #include "sim/thread_budget.h"
 #include "sim/walk_trial.h"
 
@@ -61,6 +62,10 @@ const char* kWalkUsage =
     "  --speed-schedule T:V,...      goal speed V m/s at time T s, linear between, held after the\n"
     "                                last (replaces --speed; reports speed tracking)\n"
     "  --drift-window S              position drift over the last S seconds (default: second half)\n"
+    "  --box-hits N                  instead of one walk, the box-hit trial: boxes thrown as the\n"
+    "                                demo throws them (0.24 m, 8.3 kg, 14 m/s or faster) at random\n"
+    "                                body parts, one walking episode each, until N hit, 1 to 1000;\n"
+    "                                prints the hits and how many knocked the character over\n"
     "  --seed N                      0 to 4294967295 (default 1)\n"
     "  --trace                       include the leg frame's path every 0.1 s\n"
     "  --json                        print one JSON document\n";
@@ -146,11 +151,37 @@ int loadParamsOption(const std::string& path, std::optional<gait::Character> exp
   return 0;
 }
 
+// `gaitlab walk --box-hits N`: the box-hit trial (sim/box_hits.h) with the walk's character,
+// gait, goal and ground.
+int boxHits(const sim::WalkOptions& w, int hits, bool oneLine) {
+  sim::BoxHitOptions b;
+  b.walk = w;
+  b.hits = hits;
+  const sim::BoxHitResult r = sim::runBoxHits(b);
+  json list = json::array();
+  for (const sim::BoxHit& h : r.hits)
+    list.push_back({{"segment", h.segment}, {"throw_time_s", h.throwTime}, {"speed_m_s", h.speed}, {"fell", h.fell}});
+  const json out = {
+      {"character", gait::characterName(w.character)},
+      {"terrain", physics::terrainName(w.terrain)},
+      {"goal_speed_m_s", w.speed},
+      {"goal_turn_rad_s", w.turnRate},
+      {"box_half_m", b.half},
+      {"box_throws", r.throws},
+      {"box_hits", static_cast<int>(r.hits.size())},
+      {"box_hit_falls", r.falls()},
+      {"hits", list},
+      {"seed", w.seed},
+  };
+  std::printf("%s\n", oneLine ? out.dump().c_str() : out.dump(2).c_str());
+  return 0;
+}
+
 int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--speed", "--turn", "--heading", "--start-push-forward",
              "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
-             "--push-direction", "--speed-schedule", "--drift-window"},
+             "--push-direction", "--speed-schedule", "--drift-window", "--box-hits"},
             {"--json", "--trace"});
   if (o.help) return printHelp(kWalkUsage);
   if (!o.error.empty()) return api::usageError("walk", o.error);
@@ -183,6 +214,11 @@ int walk(int argc, char** argv) {
       !o.number("--drift-window", 0, 3600, 0.0, &w.driftWindow))
     return api::usageError("walk", o.error);
   w.seed = static_cast<uint32_t>(seed);
+  if (o.values.count("--box-hits")) {
+    long long hits = 0;
+    if (!o.integer("--box-hits", 1, 1000, 50, &hits)) return api::usageError("walk", o.error);
+    return boxHits(w, static_cast<int>(hits), o.flags.count("--json") > 0);
+  }
   const std::string direction = o.values.count("--push-direction") ? o.values["--push-direction"] : "lateral";
   if (direction == "lateral") w.pushDirection = sim::PushDirection::Lateral;
   else if (direction == "forward") w.pushDirection = sim::PushDirection::Forward;

@@ -14,6 +14,7 @@
 #include "api/c_api.h"
 #include "api/handles.h"
 #include "physics/world.h"
+#include "sim/box_hits.h"
 #include "sim/intercept.h"
 #include "sim/simulation.h"
 
@@ -90,27 +91,6 @@ TEST(Intercept, TheBoxMeetsThePredictedTargetAtItsFlightTime) {
 
 namespace {
 
-// Whether the thrown box touches one of the character's bodies now: a contact point within 1 cm
-// between a body of the character and a dynamic body that is not one of them (the scene's only
-// other dynamic body is the box).
-bool boxTouches(const gaitlab::sim::Simulation& sim, int index) {
-  const auto& c = sim.character(index);
-  std::set<const btCollisionObject*> own;
-  for (int k = 0; k < c.segmentCount(); ++k) own.insert(c.body(k));
-  const btDispatcher& d = *sim.world(sim.shardOf(index)).dynamics().getDispatcher();
-  for (int m = 0; m < d.getNumManifolds(); ++m) {
-    const btPersistentManifold* manifold = const_cast<btDispatcher&>(d).getManifoldByIndexInternal(m);
-    const btCollisionObject* a = manifold->getBody0();
-    const btCollisionObject* b = manifold->getBody1();
-    if (own.count(b)) std::swap(a, b);
-    if (!own.count(a) || own.count(b) || b->isStaticObject()) continue;
-    for (int p = 0; p < manifold->getNumContacts(); ++p) {
-      if (manifold->getContactPoint(p).getDistance() < 0.01) return true;
-    }
-  }
-  return false;
-}
-
 // Ten throws at a biped walking at 1 m/s, each on its own turning path (±0.3 rad/s, the wander
 // limit) and at its own moment of the stride, from random directions 8–18 m away and 1.5–4 m up
 // (where the page's camera stands: 16 m from a crowd of 24), at 14 m/s (the page's throw). `led`: aimed by gl_sim_throw_at
@@ -149,7 +129,7 @@ int throwsThatHit(bool led) {
     bool hit = false;
     for (int step = 0; step < static_cast<int>((flight + 0.3) * 120) && !hit; ++step) {
       gl_sim_step(s, 1);
-      hit = boxTouches(sim, 0);
+      hit = gaitlab::sim::boxTouches(sim, 0);
     }
     hits += hit;
     gl_sim_destroy(s);

@@ -1,0 +1,106 @@
+#include "sim/box_hits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <btBulletDynamicsCommon.h>
+
+#include "physics/world.h"
+
+namespace gaitlab::sim {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kJudgeSeconds = 3.0;  // a hit is judged this long after the throw
+constexpr double kMissMargin = 0.3;    // s after the flight time, then a throw is a miss
+
+// The same small generator as the walk trial's pushes: the same draws in every build (native and
+// WebAssembly), which <random>'s distributions do not promise.
+struct Draws {
+  uint32_t state;
+  explicit Draws(uint32_t seed) : state(seed * 2654435761u + 1) {}
+  double unit() {
+    state ^= state << 13;
+    state ^= state >> 17;
+    state ^= state << 5;
+    return (state >> 8) * (1.0 / 16777216.0);
+  }
+};
+
+}  // namespace
+
+int BoxHitResult::falls() const {
+  return static_cast<int>(std::count_if(hits.begin(), hits.end(), [](const BoxHit& h) { return h.fell; }));
+}
+
+double pageThrowSpeed(double distance) { return std::min(30.0, std::max(14.0, distance / 1.0)); }
+
+bool boxTouches(const Simulation& sim, int i) {
+  const physics::Character& c = sim.character(i);
+  std::set<const btCollisionObject*> own;
+  for (int k = 0; k < c.segmentCount(); ++k) own.insert(c.body(k));
+  btDispatcher& d = *const_cast<physics::World&>(sim.world(sim.shardOf(i))).dynamics().getDispatcher();
+  for (int m = 0; m < d.getNumManifolds(); ++m) {
+    const btPersistentManifold* manifold = d.getManifoldByIndexInternal(m);
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    if (own.count(b)) std::swap(a, b);
+    if (!own.count(a) || own.count(b) || b->isStaticObject()) continue;
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      if (manifold->getContactPoint(p).getDistance() < 0.01) return true;
+    }
+  }
+  return false;
+}
+
+BoxHitResult runBoxHits(const BoxHitOptions& o) {
+  BoxHitResult r;
+  Draws draw(o.walk.seed);
+  const int maxThrows = 3 * o.hits;  // misses are rare (the aim leads the walker); never loop forever
+  while (static_cast<int>(r.hits.size()) < o.hits && r.throws < maxThrows) {
+    Simulation sim(1, o.walk.seed);
+    if (o.walk.terrain != physics::TerrainKind::Flat) sim.setTerrain(o.walk.terrain);
+    sim.spawn(o.walk.character, 0, 0, o.walk.heading);
+    if (o.walk.gait) sim.controller(0).setGait(*o.walk.gait);
+    sim.setGoal(0, {o.walk.speed, o.walk.turnRate});
+    // Every draw is taken before the episode runs, so an episode's fall does not shift the next
+    // episode's draws.
+    const double walkFor = 2.0 + 2.0 * draw.unit();
+    const int segment = std::min(sim.character(0).segmentCount() - 1,
+                                 static_cast<int>(draw.unit() * sim.character(0).segmentCount()));
+    const double azimuth = 2 * kPi * draw.unit(), distance = 8 + 10 * draw.unit(), height = 1.5 + 2.5 * draw.unit();
+    ++r.throws;
+
+    sim.step(static_cast<int>(std::lround(walkFor / physics::kFixedStep)));
+    if (hasFallen(sim, 0)) {  // fell before the throw: the gait, not the box (counted as a fall)
+      r.hits.push_back({segment, sim.time(), 0.0, true});
+      continue;
+    }
+    const Eigen::Vector3d trunk = sim.character(0).segmentState(0).position;
+    const Eigen::Vector3d from(trunk.x() + distance * std::cos(azimuth), height, trunk.z() + distance * std::sin(azimuth));
+    const Eigen::Vector3d target = sim.character(0).segmentState(segment).position;
+    const double speed = pageThrowSpeed((target - from).norm());
+    const Intercept aim = sim.aimAt(0, segment, Eigen::Vector3d::Zero(), from, speed);
+    BoxHit hit{segment, sim.time(), speed, false};
+    sim.throwBox(from, aim.velocity, o.half);
+
+    bool touched = false;
+    const int judgeSteps = static_cast<int>(std::lround(kJudgeSeconds / physics::kFixedStep));
+    const int missSteps = static_cast<int>(std::lround((aim.flightTime + kMissMargin) / physics::kFixedStep));
+    for (int step = 0; step < judgeSteps; ++step) {
+      sim.step(1);
+      touched = touched || boxTouches(sim, 0);
+      if (!touched && step >= missSteps) break;
+      if (touched && hasFallen(sim, 0)) {
+        hit.fell = true;
+        break;
+      }
+    }
+    if (touched) r.hits.push_back(hit);
+  }
+  return r;
+}
+
+}  // namespace gaitlab::sim

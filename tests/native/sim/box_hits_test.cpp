@@ -1,0 +1,63 @@
+// The box-hit trial (sim/box_hits.h): boxes thrown as the demo throws them hit the walking
+// character (the simulation aims them), every hit is judged, the trial is reproducible from its
+// seed, and what it counts as knocked over follows the box: a pebble knocks over nobody, a crate
+// of half a tonne everybody.
+#include <gtest/gtest.h>
+
+#include "sim/box_hits.h"
+
+using gaitlab::gait::Character;
+using gaitlab::sim::BoxHitOptions;
+using gaitlab::sim::BoxHitResult;
+using gaitlab::sim::runBoxHits;
+
+namespace {
+
+BoxHitOptions trial(Character c, int hits, double half) {
+  BoxHitOptions o;
+  o.walk.character = c;
+  o.walk.speed = c == Character::Biped ? 0.5 : 0.4;
+  o.walk.seed = 3;
+  o.hits = hits;
+  o.half = half;
+  return o;
+}
+
+}  // namespace
+
+TEST(BoxHits, AimedThrowsHitAndEveryHitIsJudged) {
+  for (Character c : {Character::Biped, Character::Quadruped}) {
+    const BoxHitResult r = runBoxHits(trial(c, 6, 0.12));
+    ASSERT_EQ(r.hits.size(), 6u) << characterName(c);
+    // The aim leads the walker: at most one throw in three may miss.
+    EXPECT_LE(r.throws, 8) << characterName(c);
+    for (const auto& h : r.hits) {
+      EXPECT_GE(h.segment, 0);
+      EXPECT_GE(h.speed, 14.0);   // the page's throw speed, faster beyond 14 m
+      EXPECT_LE(h.speed, 18.5);   // thrown from at most 18 m (and a little above)
+      EXPECT_GE(h.throwTime, 2.0);
+      EXPECT_LE(h.throwTime, 4.01);
+    }
+  }
+}
+
+TEST(BoxHits, TheSameSeedGivesTheSameTrial) {
+  const BoxHitResult a = runBoxHits(trial(Character::Biped, 4, 0.12));
+  const BoxHitResult b = runBoxHits(trial(Character::Biped, 4, 0.12));
+  ASSERT_EQ(a.hits.size(), b.hits.size());
+  EXPECT_EQ(a.throws, b.throws);
+  for (size_t i = 0; i < a.hits.size(); ++i) {
+    EXPECT_EQ(a.hits[i].segment, b.hits[i].segment);
+    EXPECT_EQ(a.hits[i].throwTime, b.hits[i].throwTime);
+    EXPECT_EQ(a.hits[i].fell, b.hits[i].fell);
+  }
+}
+
+TEST(BoxHits, WhatKnocksOverFollowsTheBox) {
+  // A 6 cm box of 0.13 kg at 14 m/s (under 2 N·s): nobody falls.
+  EXPECT_EQ(runBoxHits(trial(Character::Biped, 5, 0.03)).falls(), 0);
+  EXPECT_EQ(runBoxHits(trial(Character::Quadruped, 5, 0.03)).falls(), 0);
+  // A 1 m box of 600 kg: every hit knocks the character over.
+  const BoxHitResult crate = runBoxHits(trial(Character::Biped, 5, 0.5));
+  EXPECT_EQ(crate.falls(), static_cast<int>(crate.hits.size()));
+}

@@ -3,7 +3,7 @@
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
-//                          [--only criteria,sweep,ramp,pushes,boxes] [--jobs 2] [--step 0.1]
+//                          [--only criteria,sweep,ramp,pushes,boxes,starts] [--jobs 2] [--step 0.1]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
 // gait file to measure instead of the preset: walking-<file name>.{json,md}). With --only, the
@@ -24,7 +24,10 @@
 //     the largest impulse survived every time and in ≥ 90 % of them;
 //   - boxes: the box-hit trial (`gaitlab walk --box-hits`, native/src/sim/box_hits.h): boxes
 //     thrown as the demo throws them at random body parts of the character walking at its cruise
-//     speed and standing, 50 hits each; how many knocked it over (the goal: at most 1 in 5).
+//     speed and standing, 50 hits each; how many knocked it over (the goal: at most 1 in 5);
+//   - starts: from rest at 100 gait phases (0, 0.01, ... 0.99; a crowd starts each character at
+//     its own), 10 s at each of four goal speeds across the range: how many fall. The walking
+//     criteria's 12 starts vary the heading and a push; this varies where in its stride it starts.
 // The walking criteria:
 //   - 60 s on flat ground at two goal speeds, one twice the other, without a fall;
 //   - mean speed within ±15 % of the goal; heading drift under 10° walking straight;
@@ -51,7 +54,7 @@ const opt = (name, fallback) => {
 const seconds = Number(opt('seconds', '60'));
 const jobs = Math.max(1, Number(opt('jobs', '2')));
 const sweepStep = Number(opt('step', '0.1'));
-const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes'];
+const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes', 'starts'];
 const only = opt('only', SECTIONS.join(',')).split(',');
 for (const s of only) {
   if (!SECTIONS.includes(s)) {
@@ -298,6 +301,22 @@ async function measureBoxes(character) {
   return { ...stamp, box_half_m: 0.12, trials };
 }
 
+// Starts from rest at 100 gait phases, 10 s each, at four goal speeds from the cruise speed to the
+// top of what the character walks (the sweep's).
+const START_PHASES = 100, START_SECONDS = 10;
+async function measureStarts(character) {
+  const speeds = character === 'biped' ? [0.5, 1.0, 1.3, 1.6] : [0.4, 0.8, 1.0, 1.3];
+  const rows = await Promise.all(speeds.map(async (speed) => {
+    process.stderr.write(`${character}: starts from ${START_PHASES} phases at ${speed} m/s\n`);
+    const runs = await Promise.all(Array.from({ length: START_PHASES }, (_, k) =>
+      walkAsync(character, ['--speed', speed, '--seconds', START_SECONDS, '--start-phase', k / START_PHASES])
+        .then((r) => ({ phase: k / START_PHASES, fell: r.fell, fall_time_s: r.fall_time_s }))));
+    const fell = runs.filter((x) => x.fell);
+    return { speed, starts: runs.length, falls: fell.length, fell_at_phases: fell.map((x) => x.phase) };
+  }));
+  return { ...stamp, seconds: START_SECONDS, rows };
+}
+
 for (const character of characters) {
   const r = (report.characters[character] ??= {});
   const measured = await Promise.all([
@@ -306,6 +325,7 @@ for (const character of characters) {
     only.includes('ramp') ? measureRamp(character) : null,
     only.includes('pushes') ? measurePushes(character) : null,
     only.includes('boxes') ? measureBoxes(character) : null,
+    only.includes('starts') ? measureStarts(character) : null,
   ]);
   SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
   // Results of the previous layout (criteria at the top level) are not carried on.
@@ -377,6 +397,13 @@ for (const [character, r] of Object.entries(report.characters)) {
       lines.push(`| ${t.speed} | ${t.hits} (${t.throws}) | ${t.falls} (${Math.round((100 * t.falls) / t.hits)} %) | ${t.met ? 'yes' : '**no**'} | ` +
         `${Object.entries(t.by_segment).map(([k, s]) => `${k}: ${s.falls}/${s.hits}`).join(', ')} |`);
     }
+    lines.push('');
+  }
+  const st = r.starts;
+  if (st) {
+    lines.push(`### Starts from rest at ${START_PHASES} gait phases (${st.seconds} s each; ${st.measured.slice(0, 10)}, ${st.commit})`, '',
+      '| goal m/s | fell | at phases |', '|---|---|---|');
+    for (const row of st.rows) lines.push(`| ${row.speed} | ${row.falls} of ${row.starts} | ${row.fell_at_phases.join(', ') || '–'} |`);
     lines.push('');
   }
 }

@@ -64,6 +64,7 @@ for (const [args, message] of [
   [['walk', '--bogus'], /unknown option '--bogus'/],
   [['walk', '--seed'], /option --seed needs a value/],
   [['walk', '--box-hits', '0'], /--box-hits: 0 is outside/],
+  [['walk', '--start-phase', '1.5'], /--start-phase: 1.5 is outside/],
   [['fly'], /unknown command 'fly'/],
 ]) {
   test(`refuses ${args.join(' ')}`, () => {

@@ -50,6 +50,7 @@ const char* kWalkUsage =
     "  --speed M_S                   goal speed, m/s, -5 to 5 (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s, -3 to 3 (default 0)\n"
     "  --heading RAD                 heading it starts facing, about +y (default 0: +z)\n"
+    "  --start-phase F               gait phase it starts at, 0 to 1 (default: the gait's own)\n"
     "  --start-push-forward N_S      impulse at the leg frame at t = 0, forward (default 0)\n"
     "  --start-push-left N_S         the same, to the left (default 0)\n"
     "  --seconds S                   simulated time, 0.01 to 3600 (default 20)\n"
@@ -181,7 +182,7 @@ int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--speed", "--turn", "--heading", "--start-push-forward",
              "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
-             "--push-direction", "--speed-schedule", "--drift-window", "--box-hits"},
+             "--push-direction", "--speed-schedule", "--drift-window", "--box-hits", "--start-phase"},
             {"--json", "--trace"});
   if (o.help) return printHelp(kWalkUsage);
   if (!o.error.empty()) return api::usageError("walk", o.error);
@@ -211,7 +212,8 @@ int walk(int argc, char** argv) {
       !o.number("--push-impulse", 0, 10000, 0.0, &w.pushImpulse) ||
       !o.number("--push-every", 0.5, 3600, 4.0, &w.pushEvery) ||
       !o.integer("--seed", 0, kMaxSeed, 1, &seed) ||
-      !o.number("--drift-window", 0, 3600, 0.0, &w.driftWindow))
+      !o.number("--drift-window", 0, 3600, 0.0, &w.driftWindow) ||
+      !o.number("--start-phase", 0, 1, -1.0, &w.startPhase))
     return api::usageError("walk", o.error);
   w.seed = static_cast<uint32_t>(seed);
   if (o.values.count("--box-hits")) {

@@ -63,6 +63,7 @@ WalkResult runWalk(const WalkOptions& o) {
   sim.spawn(o.character, 0, 0, o.heading);
   if (o.gait) sim.controller(0).setGait(*o.gait);
   sim.setGoal(0, {goalSpeedAt(o, 0.0), o.turnRate});
+  if (o.startPhase >= 0) sim.controller(0).setPhase(o.startPhase);
   const body::Morphology& m = sim.character(0).morphology();
   const int root = m.legFrames[0];
 

@@ -38,6 +38,9 @@ struct WalkOptions {
   // facing, and a horizontal impulse at its root leg frame at t = 0 in the heading frame
   // (x = left, z = forward), N·s.
   double heading = 0.0;
+  // The gait phase it starts at, 0 to 1 (a crowd starts each character at its own); negative:
+  // the gait player's own start.
+  double startPhase = -1.0;
   double startImpulseLeft = 0.0, startImpulseForward = 0.0;
   // Called after every fixed step, before the fall check (the optimiser's objective records
   // the leg frames here). May be empty.

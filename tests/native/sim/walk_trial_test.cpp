@@ -237,6 +237,23 @@ TEST(SpeedRange, TheBipedRecoversFromPushesAtGoalZero) {
   }
 }
 
+// A start phase is where the gait player starts (the walking benchmark's starts from 100 phases):
+// phase 0 is the gait's own start, bit for bit; another phase is another walk, which still walks.
+TEST(WalkTrial, AStartPhaseStartsTheGaitThere) {
+  WalkOptions o;
+  o.character = Character::Biped;
+  o.speed = 0.5;
+  o.seconds = 5;
+  const auto own = runWalk(o);
+  o.startPhase = 0.0;
+  EXPECT_EQ(runWalk(o).stateHash, own.stateHash);
+  o.startPhase = 0.5;
+  const auto half = runWalk(o);
+  EXPECT_NE(half.stateHash, own.stateHash);
+  EXPECT_FALSE(half.fell) << "fell after " << half.fallTime << " s";
+  EXPECT_GT(half.distance, 1.0);
+}
+
 // The goal schedule of the ramp trial: linear between its points, held before and after.
 TEST(WalkTrial, GoalScheduleInterpolates) {
   WalkOptions o;

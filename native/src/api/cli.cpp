@@ -95,7 +95,7 @@ const char* kOptimizeUsage =
     "                                or bumps, each optionally @HEADING (rad it starts facing;\n"
     "                                on the slope 0 climbs first, 3.14159 descends first)\n"
     "  --objective NAME=V,...        objective settings: wd wv wa wr fallPenalty warmup starts\n"
-    "                                startImpulse turnRate pushImpulse pushEvery\n"
+    "                                startImpulse startPhases turnRate pushImpulse pushEvery\n"
     "  --json                        print a JSON summary on stdout (progress goes to stderr)\n"
     "  Ctrl-C stops after the current generation and still writes the best so far.\n";
 

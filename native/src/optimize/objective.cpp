@@ -30,6 +30,8 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   s.starts = static_cast<int>(std::lround(starts));
   visit({"startImpulse", 0, 500, "N·s", "horizontal nudge at t = 0 for start states after the first"},
         s.startImpulse);
+  visit({"startPhases", 0, 1, "1", "1: start states after the first also begin at their own gait phase, as a crowd starts", true},
+        s.startPhases);
   visit({"turnRate", -3, 3, "rad/s", "goal turn rate"}, s.turnRate);
   visit({"pushImpulse", 0, 1000, "N·s", "lateral pushes during an episode (0: none)"}, s.pushImpulse);
   visit({"pushEvery", 0.5, 60, "s", "time between pushes, phase jittered"}, s.pushEvery);
@@ -162,6 +164,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
     const double angle = r.uniform(0.0, 2.0 * gait::kPi);
     w.startImpulseLeft = settings.startImpulse * std::sin(angle);
     w.startImpulseForward = settings.startImpulse * std::cos(angle);
+    if (settings.startPhases > 0) w.startPhase = std::fmod(start * 0.6180339887498949, 1.0);
   }
   ObjectiveRecorder recorder(settings, speed, w.heading, physics::kFixedStep);
   std::vector<LegFrameSample> frames;

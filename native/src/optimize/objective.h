@@ -72,6 +72,9 @@ struct ObjectiveSettings {
   std::vector<double> speeds = {1.0};
   int starts = 1;                // start state 0 stands still; the others get a random nudge
   double startImpulse = 10.0;    // N·s, horizontal, random direction, for starts 1..N-1
+  // 1: starts 1..N-1 also begin at their own gait phase (golden-ratio spread, as a crowd starts),
+  // not at the gait's own start; 0 (default): every start at the gait's own phase.
+  double startPhases = 0.0;
   double turnRate = 0.0;         // goal turn rate, rad/s
   double pushImpulse = 0.0;      // N·s lateral pushes during the episode (0 = none)
   double pushEvery = 2.0;        // s between pushes, phase jittered

@@ -267,6 +267,24 @@ TEST(OptimizeObjective, TimingDeviationIsTheMeanSquaredDutyError) {
   EXPECT_NEAR(weighted.total, plain.total + 10.0 * plain.ft, 1e-12);
 }
 
+// startPhases: start states after the first begin at their own gait phase (as a crowd starts),
+// the first at the gait's own; with the setting off every start begins at the gait's own phase.
+TEST(OptimizeObjective, StartPhasesGiveLaterStartsTheirOwnPhase) {
+  using gaitlab::gait::Character;
+  ObjectiveSettings s;
+  s.seconds = 2.0;
+  s.startImpulse = 0.0;  // the starts then differ by their phase alone
+  const gaitlab::gait::Gait g = gaitlab::gait::defaultGait(Character::Biped);
+  const ObjectiveTerms first = runEpisode(Character::Biped, g, s, 0.5, 0, 1);
+  const ObjectiveTerms second = runEpisode(Character::Biped, g, s, 0.5, 1, 1);
+  s.startPhases = 1.0;
+  const ObjectiveTerms firstPhased = runEpisode(Character::Biped, g, s, 0.5, 0, 1);
+  const ObjectiveTerms secondPhased = runEpisode(Character::Biped, g, s, 0.5, 1, 1);
+  EXPECT_EQ(firstPhased.total, first.total);    // the first start: the gait's own phase either way
+  EXPECT_EQ(second.total, first.total);         // no nudge, no phase: the same episode
+  EXPECT_NE(secondPhased.total, second.total);  // the second start at phase 0.618
+}
+
 TEST(OptimizeObjective, SettingsAreCheckedAgainstTheirBounds) {
   ObjectiveSettings s;
   EXPECT_EQ(setSetting(s, "wr", 4.0), "");

@@ -50,7 +50,6 @@ Simulation* sim(void* h) { return &handle(h)->simulation; }
 int clampThreads(int threads) { return std::clamp(threads, 1, GL_MAX_THREADS); }
 
 bool isFinite(double v) { return std::isfinite(v); }
-bool isFinite(const double (&v)[3]) { return isFinite(v[0]) && isFinite(v[1]) && isFinite(v[2]); }
 
 std::string str(int v) { return std::to_string(v); }
 // nlohmann writes NaN and infinity as null: say what they are.
@@ -565,9 +564,7 @@ const char* gl_opt_best_json(void* h) {
       {"objective_terms", {{"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"ft", t.ft}, {"fall", t.fall}}},
       {"generations", o.generation()},
       {"evaluations", o.evaluations()}};
-  gait::Gait best = o.options().gait;
-  best.keys[o.options().key].params = o.best();
-  opt(h)->text = gait::gaitFileJson(opt(h)->character, best, o.generation() ? meta : nlohmann::json::object());
+  opt(h)->text = gait::gaitFileJson(opt(h)->character, o.gaitWith(o.best()), o.generation() ? meta : nlohmann::json::object());
   return opt(h)->text.c_str();
 }
 

@@ -464,9 +464,7 @@ int optimizeCommand(int argc, char** argv) {
                {"date", utcNow()}};
   // Ctrl-C stays caught until the file is in place: a second one while it is written changes
   // nothing (the write is short), rather than leaving the temporary file behind.
-  gait::Gait best = search.gait;
-  best.keys[search.key].params = optimizer->best();
-  const bool committed = output.commit(gait::gaitFileJson(search.character, best, meta));
+  const bool committed = output.commit(gait::gaitFileJson(search.character, optimizer->gaitWith(optimizer->best()), meta));
   std::signal(SIGINT, previous);
   if (!committed) {
     std::fprintf(stderr,

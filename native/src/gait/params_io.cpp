@@ -167,6 +167,15 @@ std::optional<ParamsError> readSpeed(const json& v, const std::string& field, do
   return std::nullopt;
 }
 
+// Whether `speed` is one a key already has (within 1e-9 m/s, as Gait::keyAt): the refusal for
+// `field`, or nullopt.
+std::optional<ParamsError> speedTaken(double speed, const std::vector<double>& taken, const std::string& field) {
+  for (double other : taken) {
+    if (std::abs(other - speed) <= 1e-9) return ParamsError{field, "another key is already tuned at " + num(speed) + " m/s"};
+  }
+  return std::nullopt;
+}
+
 // One complete parameter set ("params" of a file or of one of its keys): every schema field of
 // the character, migrated from `version`, nothing else. `prefix` goes before the field names in
 // messages ("keys[0].params."). Fills *params only where the schema visits; returns the first
@@ -201,8 +210,8 @@ std::optional<ParamsError> readParams(Character c, const json& given, int versio
 }
 
 // "keys" of a file or a patch: at most kMaxSpeedKeys - 1 complete parameter sets, each at its own
-// speed, none at `primarySpeed`; sorted by speed into *keys. A key's fields not visited by the
-// schema start from `base`.
+// speed, none at `primarySpeed`, into *keys in the file's order (Gait::of orders them by speed).
+// A key's fields not visited by the schema start from `base`.
 std::optional<ParamsError> readKeys(Character c, const json& kj, int version, const GaitParams& base,
                                     double primarySpeed, std::vector<SpeedKey>* keys) {
   if (!kj.is_array()) return ParamsError{"keys", "expected an array, got " + typeName(kj)};
@@ -222,16 +231,12 @@ std::optional<ParamsError> readKeys(Character c, const json& kj, int version, co
     k.params = base;
     if (!key.contains("speed")) return ParamsError{where + ".speed", "missing"};
     if (auto error = readSpeed(key["speed"], where + ".speed", &k.speed)) return error;
-    for (double other : speeds) {
-      if (std::abs(other - k.speed) <= 1e-9)
-        return ParamsError{where + ".speed", "another key is already tuned at " + num(k.speed) + " m/s"};
-    }
+    if (auto error = speedTaken(k.speed, speeds, where + ".speed")) return error;
     speeds.push_back(k.speed);
     if (!key.contains("params")) return ParamsError{where + ".params", "missing"};
     if (auto error = readParams(c, key["params"], version, where + ".params.", &k.params)) return error;
     read.push_back(k);
   }
-  std::sort(read.begin(), read.end(), [](const SpeedKey& a, const SpeedKey& b) { return a.speed < b.speed; });
   *keys = std::move(read);
   return std::nullopt;
 }
@@ -313,11 +318,10 @@ std::optional<ParamsError> normalizeGaitFile(const std::string& text, std::strin
   return std::nullopt;
 }
 
-std::optional<ParamsError> applyParamsPatch(Character c, const std::string& text, GaitParams* params) {
-  json patch;
-  if (auto error = parseJson(text, &patch)) return error;
-  if (!patch.is_object())
-    return ParamsError{"", "expected a JSON object of parameter values, got " + typeName(patch)};
+namespace {
+
+// applyParamsPatch on a parsed patch object; every name in it must be a parameter's.
+std::optional<ParamsError> applyParamValues(Character c, const json& patch, GaitParams* params) {
   // Every value is read into a copy first: a refused patch changes nothing.
   GaitParams copy = *params;
   std::optional<ParamsError> error;
@@ -335,6 +339,16 @@ std::optional<ParamsError> applyParamsPatch(Character c, const std::string& text
   return std::nullopt;
 }
 
+}  // namespace
+
+std::optional<ParamsError> applyParamsPatch(Character c, const std::string& text, GaitParams* params) {
+  json patch;
+  if (auto error = parseJson(text, &patch)) return error;
+  if (!patch.is_object())
+    return ParamsError{"", "expected a JSON object of parameter values, got " + typeName(patch)};
+  return applyParamValues(c, patch, params);
+}
+
 std::optional<ParamsError> applyGaitPatch(Character c, const std::string& text, Gait* gait) {
   json patch;
   if (auto error = parseJson(text, &patch)) return error;
@@ -345,21 +359,19 @@ std::optional<ParamsError> applyGaitPatch(Character c, const std::string& text, 
   std::vector<SpeedKey> others;
   for (size_t i = 0; i < gait->keys.size(); ++i)
     if (static_cast<int>(i) != gait->primary) others.push_back(gait->keys[i]);
-  json params = json::object();
-  for (const auto& item : patch.items()) {
-    if (item.key() != "speed" && item.key() != "keys") params[item.key()] = item.value();
-  }
   if (patch.contains("speed")) {
     if (auto error = readSpeed(patch["speed"], "speed", &primary.speed)) return error;
   }
-  if (auto error = applyParamsPatch(c, params.dump(), &primary.params)) return error;
+  json params = patch;
+  params.erase("speed");
+  params.erase("keys");
+  if (auto error = applyParamValues(c, params, &primary.params)) return error;
   if (patch.contains("keys")) {
     if (auto error = readKeys(c, patch["keys"], kGaitFormatVersion, primary.params, primary.speed, &others)) return error;
   } else {
-    for (const SpeedKey& other : others) {
-      if (std::abs(other.speed - primary.speed) <= 1e-9)
-        return ParamsError{"speed", "another key is already tuned at " + num(primary.speed) + " m/s"};
-    }
+    std::vector<double> taken;
+    for (const SpeedKey& other : others) taken.push_back(other.speed);
+    if (auto error = speedTaken(primary.speed, taken, "speed")) return error;
   }
   *gait = Gait::of(std::move(primary), std::move(others));
   return std::nullopt;

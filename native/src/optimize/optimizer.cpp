@@ -47,9 +47,14 @@ ObjectiveTerms Optimizer::score(const gait::GaitParams& params) const {
   // The same episodes (start states, push phases) for every candidate of every generation, so
   // objectives are comparable; they follow from the search seed.
   const uint32_t episodeSeed = static_cast<uint32_t>(options_.seed * 2654435761u + 12345u);
-  gait::Gait gait = options_.gait.keys.empty() ? gait::Gait::single(params) : options_.gait;
-  if (!options_.gait.keys.empty()) gait.keys[options_.key].params = params;
-  return evaluate(options_.character, gait, options_.objective, episodeSeed);
+  return evaluate(options_.character, gaitWith(params), options_.objective, episodeSeed);
+}
+
+gait::Gait Optimizer::gaitWith(const gait::GaitParams& params) const {
+  if (options_.gait.keys.empty()) return gait::Gait::single(params);
+  gait::Gait gait = options_.gait;
+  gait.keys[options_.key].params = params;
+  return gait;
 }
 
 Generation Optimizer::step() {

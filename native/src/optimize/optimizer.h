@@ -77,6 +77,9 @@ class Optimizer {
   Generation step();
 
   const gait::GaitParams& best() const { return best_; }
+  // The whole gait with the tuned key set to `params` (SearchOptions::gait; without keys, `params`
+  // alone): what every episode walks with, and what a search writes out.
+  gait::Gait gaitWith(const gait::GaitParams& params) const;
   double bestObjective() const { return bestObjective_; }
   const ObjectiveTerms& bestTerms() const { return bestTerms_; }
   int generation() const { return generation_; }

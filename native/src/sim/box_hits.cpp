@@ -6,28 +6,15 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include "gait/heading.h"
 #include "physics/world.h"
 
 namespace gaitlab::sim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kJudgeSeconds = 3.0;  // a hit is judged this long after the throw
 constexpr double kMissMargin = 0.3;    // s after the flight time, then a throw is a miss
-
-// The same small generator as the walk trial's pushes: the same draws in every build (native and
-// WebAssembly), which <random>'s distributions do not promise.
-struct Draws {
-  uint32_t state;
-  explicit Draws(uint32_t seed) : state(seed * 2654435761u + 1) {}
-  double unit() {
-    state ^= state << 13;
-    state ^= state >> 17;
-    state ^= state << 5;
-    return (state >> 8) * (1.0 / 16777216.0);
-  }
-};
 
 }  // namespace
 
@@ -57,20 +44,17 @@ bool boxTouches(const Simulation& sim, int i) {
 
 BoxHitResult runBoxHits(const BoxHitOptions& o) {
   BoxHitResult r;
-  Draws draw(o.walk.seed);
+  TrialDraws draw(o.walk.seed);
   const int maxThrows = 3 * o.hits;  // misses are rare (the aim leads the walker); never loop forever
   while (static_cast<int>(r.hits.size()) < o.hits && r.throws < maxThrows) {
     Simulation sim(1, o.walk.seed);
-    if (o.walk.terrain != physics::TerrainKind::Flat) sim.setTerrain(o.walk.terrain);
-    sim.spawn(o.walk.character, 0, 0, o.walk.heading);
-    if (o.walk.gait) sim.controller(0).setGait(*o.walk.gait);
-    sim.setGoal(0, {o.walk.speed, o.walk.turnRate});
+    setUpWalk(sim, o.walk);
     // Every draw is taken before the episode runs, so an episode's fall does not shift the next
     // episode's draws.
     const double walkFor = 2.0 + 2.0 * draw.unit();
     const int segment = std::min(sim.character(0).segmentCount() - 1,
                                  static_cast<int>(draw.unit() * sim.character(0).segmentCount()));
-    const double azimuth = 2 * kPi * draw.unit(), distance = 8 + 10 * draw.unit(), height = 1.5 + 2.5 * draw.unit();
+    const double azimuth = 2 * gait::kPi * draw.unit(), distance = 8 + 10 * draw.unit(), height = 1.5 + 2.5 * draw.unit();
     ++r.throws;
 
     sim.step(static_cast<int>(std::lround(walkFor / physics::kFixedStep)));

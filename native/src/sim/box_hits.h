@@ -24,7 +24,7 @@
 namespace gaitlab::sim {
 
 struct BoxHitOptions {
-  WalkOptions walk;  // character, gait, goal speed, turn rate, terrain, seed (nothing else used)
+  WalkOptions walk;  // character, gait, goal speed, turn rate, terrain, heading, start phase, seed
   int hits = 50;     // hits to judge
   double half = 0.12;  // m, the box's half size (the page's BOX_HALF)
 };

@@ -55,15 +55,19 @@ bool hasFallen(const physics::Character& ch, const physics::World& world) {
   return false;
 }
 
-WalkResult runWalk(const WalkOptions& o) {
-  WalkResult r;
-  r.goalSpeed = goalSpeedAt(o, o.seconds);
-  Simulation sim(1, o.seed);
+void setUpWalk(Simulation& sim, const WalkOptions& o) {
   if (o.terrain != physics::TerrainKind::Flat) sim.setTerrain(o.terrain);
   sim.spawn(o.character, 0, 0, o.heading);
   if (o.gait) sim.controller(0).setGait(*o.gait);
   sim.setGoal(0, {goalSpeedAt(o, 0.0), o.turnRate});
   if (o.startPhase >= 0) sim.controller(0).setPhase(o.startPhase);
+}
+
+WalkResult runWalk(const WalkOptions& o) {
+  WalkResult r;
+  r.goalSpeed = goalSpeedAt(o, o.seconds);
+  Simulation sim(1, o.seed);
+  setUpWalk(sim, o);
   const body::Morphology& m = sim.character(0).morphology();
   const int root = m.legFrames[0];
 
@@ -83,13 +87,7 @@ WalkResult runWalk(const WalkOptions& o) {
   double unwrapped = 0, lastHeading = startHeading, halfUnwrapped = 0;
   double nextPush = o.pushEvery > 0 && o.pushImpulse > 0 ? 2.0 : -1;
   double pushPending = -1;  // time of the last push still to be judged
-  uint32_t rng = o.seed * 2654435761u + 1;
-  const auto random = [&] {
-    rng ^= rng << 13;
-    rng ^= rng >> 17;
-    rng ^= rng << 5;
-    return (rng >> 8) * (1.0 / 16777216.0);
-  };
+  TrialDraws draws(o.seed);
   const double controller0 = sim.controllerSeconds();
   if (o.startImpulseLeft != 0 || o.startImpulseForward != 0) {
     const Eigen::Vector3d j = gait::headingToWorld(
@@ -106,7 +104,7 @@ WalkResult runWalk(const WalkOptions& o) {
       // A push in the heading frame: lateral (left or right at random), forward or backward.
       const physics::SegmentState s = rootState();
       const double h = gait::headingOf(s.orientation);
-      const double side = random() < 0.5 ? -1.0 : 1.0;
+      const double side = draws.unit() < 0.5 ? -1.0 : 1.0;
       const Eigen::Vector3d dir = o.pushDirection == PushDirection::Lateral  ? gait::headingLeft(h) * side
                                   : o.pushDirection == PushDirection::Forward ? gait::headingForward(h)
                                                                               : -gait::headingForward(h);
@@ -115,7 +113,7 @@ WalkResult runWalk(const WalkOptions& o) {
                                        static_cast<btScalar>(dir.z() * o.pushImpulse)));
       ++r.pushesApplied;
       pushPending = t;
-      nextPush = t + o.pushEvery * (0.75 + 0.5 * random());  // random phase of the gait
+      nextPush = t + o.pushEvery * (0.75 + 0.5 * draws.unit());  // random phase of the gait
     }
     sim.step(1);
     const physics::SegmentState s = rootState();

@@ -75,6 +75,29 @@ struct WalkResult {
 
 WalkResult runWalk(const WalkOptions& options);
 
+// The walk's scene in `sim` (made with the walk's seed): its ground, its one character facing
+// `heading` with its gait, its goal at t = 0 and its start phase. runWalk and the box-hit trial
+// (box_hits.h) start from it.
+void setUpWalk(Simulation& sim, const WalkOptions& options);
+
+// The trials' random draws (push sides and phases, throws): a small xorshift generator, so that
+// a seed draws the same numbers in every build, native and WebAssembly, which <random>'s
+// distributions do not promise.
+class TrialDraws {
+ public:
+  explicit TrialDraws(uint32_t seed) : state_(seed * 2654435761u + 1) {}
+  // Uniform in [0, 1).
+  double unit() {
+    state_ ^= state_ << 13;
+    state_ ^= state_ >> 17;
+    state_ ^= state_ << 5;
+    return (state_ >> 8) * (1.0 / 16777216.0);
+  }
+
+ private:
+  uint32_t state_;
+};
+
 // The goal speed of `o` at time t (its schedule, or its constant speed).
 double goalSpeedAt(const WalkOptions& o, double t);
 

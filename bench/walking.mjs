@@ -17,7 +17,8 @@
 //     --seconds each: fell or not, measured speed, heading and position drift, duty factors,
 //     flight fraction (share of time with no foot down);
 //   - ramp: the goal from 0 up to the top speed and back to 0 over 60 s, then 20 s at 0: no fall,
-//     speed within ±10 % of the goal wherever the goal exceeds 0.3 m/s (after a lag of 1 s),
+//     speed within ±10 % of the goal wherever the goal exceeds 0.3 m/s (after a lag of up to 1 s;
+//     the count at exactly 1 s is shown beside it),
 //     standing drift under 0.1 m over the last 20 s;
 //   - pushes: the push ladder in three directions (lateral, forward, backward) at the leg frame,
 //     walking at the cruise speed and standing (goal 0): 20 pushes at random phases per impulse;
@@ -72,11 +73,11 @@ if (!existsSync(cli)) {
 
 // Goal speeds per character, one twice the other, and turn commands: a 0.49 m tall dog walks
 // slower than a 1.8 m human (similar Froude numbers, v²/(g·leg length) ≈ 0.05–0.15).
-// `top`: the top of the speed range the locomotion criteria ask of each (walk 1.6 m/s for the
+// `top`: the top of the speed range the locomotion criteria ask of each (run 2.5 m/s for the
 // biped, trot 2.5 m/s for the quadruped); the sweep goes 0.4 m/s beyond it. `cruise`: the speed
 // of the walking push trials.
 const GOALS = {
-  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }], top: 1.6, cruise: 0.5 },
+  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }, { speed: 1.0, turn: 0.5 }, { speed: 1.0, turn: -0.5 }], top: 2.5, cruise: 0.5 },
   quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }], top: 2.5, cruise: 0.4 },
 };
 const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 60, 80];  // N·s at the leg frame
@@ -249,8 +250,9 @@ async function measureRamp(character) {
   const within = r.tracking.samples ? r.tracking.within_10pct / r.tracking.samples : 0;
   const checks = [
     { what: 'ramp: no fall', ok: !r.fell, value: r.fell ? `fell at ${r.fall_time_s.toFixed(1)} s` : 'no fall' },
-    { what: 'ramp: speed within ±10 % of the goal where the goal > 0.3 m/s (1 s lag)', ok: !r.fell && within === 1,
-      value: `${r.tracking.within_10pct}/${r.tracking.samples} samples; worst ${(100 * r.tracking.worst_relative_error).toFixed(0)} %` },
+    { what: 'ramp: speed within ±10 % of the goal where the goal > 0.3 m/s (lag up to 1 s)', ok: !r.fell && within === 1,
+      value: `${r.tracking.within_10pct}/${r.tracking.samples} samples; worst ${(100 * r.tracking.worst_relative_error).toFixed(0)} %` +
+        ` (at a lag of exactly 1 s: ${r.tracking.within_10pct_lag_1s}/${r.tracking.samples})` },
     { what: `ramp: standing drift under 0.1 m over the last ${STAND_SECONDS} s`, ok: !r.fell && r.position_drift_m < 0.1,
       value: `${r.position_drift_m.toFixed(3)} m` },
   ];
@@ -305,7 +307,7 @@ async function measureBoxes(character) {
 // top of what the character walks (the sweep's).
 const START_PHASES = 100, START_SECONDS = 10;
 async function measureStarts(character) {
-  const speeds = character === 'biped' ? [0.5, 1.0, 1.3, 1.6] : [0.4, 0.8, 1.0, 1.3];
+  const speeds = character === 'biped' ? [0.5, 1.0, 1.6, 2.5] : [0.4, 0.8, 1.0, 1.3];
   const rows = await Promise.all(speeds.map(async (speed) => {
     process.stderr.write(`${character}: starts from ${START_PHASES} phases at ${speed} m/s\n`);
     const runs = await Promise.all(Array.from({ length: START_PHASES }, (_, k) =>

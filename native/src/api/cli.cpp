@@ -272,6 +272,7 @@ int walk(int argc, char** argv) {
   };
   if (!w.speedSchedule.empty()) {
     out["tracking"] = {{"samples", r.trackingSamples}, {"within_10pct", r.trackingWithin},
+                       {"within_10pct_lag_1s", r.trackingWithinAtFullLag},
                        {"worst_relative_error", r.trackingWorst}};
   }
   if (w.trace) out["trace"] = r.trace;

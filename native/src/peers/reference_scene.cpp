@@ -5,28 +5,42 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gait/defaults.h"
 #include "gait/pd.h"
 #include "physics/fnv1a.h"
 #include "sim/scene_layout.h"
 
 namespace gaitlab::peers {
 
+namespace {
+
+// The holding gains (N·m/rad, N·m·s/rad), pinned: the joint gains the shipped presets held a
+// stance with when the peer benchmark was first measured (the biped's preset tuned at 1.4 m/s,
+// the quadruped's trot). They are constants of the benchmark, not read from the presets, so that
+// retuning a gait neither moves the comparison nor loosens the pose the engines hold; both are
+// stable as explicit torques at 120 Hz with the morphology's armature.
+struct HoldingGains {
+  Motor hip, knee, ankle, spine;
+};
+constexpr HoldingGains kBipedHolding{{704.2, 15.67}, {255.9, 15.06}, {203.5, 3.888}, {0, 0}};
+// The quadruped's paws are free in stance (its stance ankle gain is 0): the foot is held with the
+// swing ankle's gains.
+constexpr HoldingGains kQuadrupedHolding{{52.85, 4.178}, {37.55, 5.0}, {3.681, 0.08353}, {629.8, 1.444}};
+
+}  // namespace
+
 std::vector<Motor> holdingMotors(gait::Character character) {
   const body::Morphology m = character == gait::Character::Biped ? body::makeBiped() : body::makeQuadruped();
-  const gait::JointGains g = gait::defaultParams(character).gains;
+  const HoldingGains& g = character == gait::Character::Biped ? kBipedHolding : kQuadrupedHolding;
   std::vector<Motor> motors(m.segments.size());
   for (const body::Leg& leg : m.legs) {
-    motors[leg.upper] = {g.hipKp, g.hipKd};
-    motors[leg.lower] = {g.kneeKp, g.kneeKd};
-    // The stance ankle's gains; a preset that leaves the stance ankle free (the quadruped's paws)
-    // holds the foot with its swing ankle's.
-    motors[leg.foot] = g.stanceAnkleKp > 0 ? Motor{g.stanceAnkleKp, g.stanceAnkleKd} : Motor{g.ankleKp, g.ankleKd};
+    motors[leg.upper] = g.hip;
+    motors[leg.lower] = g.knee;
+    motors[leg.foot] = g.ankle;
   }
   for (int s : m.spine)
-    if (m.segments[s].parent >= 0) motors[s] = {g.spineKp, g.spineKd};
+    if (m.segments[s].parent >= 0) motors[s] = g.spine;
   for (int s : m.legFrames)
-    if (m.segments[s].parent >= 0) motors[s] = {g.spineKp, g.spineKd};
+    if (m.segments[s].parent >= 0) motors[s] = g.spine;
   return motors;
 }
 

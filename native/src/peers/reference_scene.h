@@ -14,9 +14,9 @@
 // once per fixed step as gaitlab's controller applies its own; Jolt uses its constraints'
 // position motors).
 //
-// The motors are PD springs with the shipped preset's joint gains (gait/params.h JointGains:
-// hip, knee, stance ankle, spine), the gains gaitlab's controller holds a stance with, which are
-// stable as explicit torques at 120 Hz with the morphology's armature; the other engine gets the
+// The motors are PD springs with fixed joint gains (hip, knee, stance ankle, spine: the gains
+// gaitlab's presets held a stance with when the benchmark was first measured, pinned in
+// reference_scene.cpp so that tuning a gait does not move the comparison); the other engine gets the
 // same stiffness and damping for its position motors through gl_morphology_json.
 #pragma once
 #include <cstdint>

@@ -62,10 +62,12 @@ struct WalkResult {
   // Share of the second half's steps with no foot on the ground (a run's flight phases).
   double flightFraction = 0;
   // Speed tracking (a schedule): the speed measured over a 2 s window against the goal at the
-  // window's centre 1 s earlier, wherever that goal exceeds 0.3 m/s (the controller issue's ramp
-  // criterion: within ±10 % after a lag of 1 s). Samples every 0.1 s.
-  int trackingSamples = 0, trackingWithin = 0;  // within ±10 %
-  double trackingWorst = 0;     // largest |measured − goal| / goal
+  // window's centre less a lag of up to 1 s, wherever the goal 1 s before the centre exceeds
+  // 0.3 m/s (the walking benchmark's ramp criterion: within ±10 % after a lag of 1 s). Samples
+  // every 0.1 s.
+  int trackingSamples = 0, trackingWithin = 0;  // within ±10 % at the best lag of 0 to 1 s
+  int trackingWithinAtFullLag = 0;              // within ±10 % of the goal exactly 1 s before
+  double trackingWorst = 0;     // largest |measured − goal| / goal, at the best lag
   double controllerMicrosPerStep = 0;  // controller only, one character
   double seconds = 0;
   std::string stateHash;

@@ -38,13 +38,15 @@ double wanderTurnRate(const std::vector<WanderBody>& bodies, int self, double ar
   const double turnRadius = std::abs(b.speed) / s.maxTurnRate;
   const double margin = std::min(0.5 * arenaRadius, 2 * turnRadius + 1.0);
   const double r = std::hypot(b.x, b.z);
-  // The weight of containment: 0 inside the margin's inner side, 1 from halfway across it on
-  // (a character heading straight out there still has the turning circle's radius before the
-  // edge).
+  // The weight of containment: 0 inside the margin's inner side, rising to 1 where a character
+  // heading straight out still has the turning circle's radius before the edge (halfway across
+  // a full margin; sooner where the margin is capped at half the arena, which a fast walker in a
+  // small arena reaches: a biped at 1 m/s turning at 0.3 rad/s needs 7.7 m).
   double edge = 0;
   double containment = 0;
   if (r > arenaRadius - margin && r > 1e-9) {
-    edge = std::min(1.0, 2 * (r - (arenaRadius - margin)) / margin);
+    const double rise = std::max(0.25 * margin, margin - turnRadius);
+    edge = std::min(1.0, (r - (arenaRadius - margin)) / rise);
     const double error = turnTo(b.heading, headingOfDirection(-b.x, -b.z));
     containment = std::clamp(s.gain * error, -s.maxTurnRate, s.maxTurnRate) * edge;
   }

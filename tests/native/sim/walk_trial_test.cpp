@@ -56,19 +56,28 @@ INSTANTIATE_TEST_SUITE_P(Presets, Walking,
 // sole, while the stance hip serves the leg frame's orientation, sent it backwards instead, and
 // the faster the larger K_v.
 TEST(StanceLeg, VelocityForceMovesTheLegFrameForwards) {
-  Simulation sim(1, 1);
-  sim.spawn(Character::Biped, 0, 0, 0);
-  gaitlab::gait::GaitParams p = sim.controller(0).params();
-  for (auto& leg : p.legs) leg.dutyFactor = 1.0;  // clamped to the player's maximum
-  p.legFrames[0].velocityGain = 300;
-  p.maxAcceleration = 1.6;  // v_d reaches the goal within the 0.5 s (the preset's ramp is gentler)
-  sim.controller(0).setParams(p);
-  sim.setGoal(0, {0.5, 0.0});
-  const double z0 = sim.character(0).segmentState(0).position.z();
-  sim.step(60);  // 0.5 s
-  const auto s = sim.character(0).segmentState(0);
-  EXPECT_GT(s.position.z() - z0, 0.03);
-  EXPECT_GT(s.linearVelocity.z(), 0.1);
+  // The same stand with and without F_v, so that what the gait's other terms do with the leg
+  // frame (its pitch graph, its height) is the same in both and F_v's own effect is compared.
+  const auto advance = [](double velocityGain, double* speed) {
+    Simulation sim(1, 1);
+    sim.spawn(Character::Biped, 0, 0, 0);
+    gaitlab::gait::GaitParams p = sim.controller(0).params();
+    for (auto& leg : p.legs) leg.dutyFactor = 1.0;  // clamped to the player's maximum
+    p.legFrames[0].velocityGain = velocityGain;
+    p.maxAcceleration = 1.6;  // v_d reaches the goal within the 0.5 s (the preset's ramp is gentler)
+    sim.controller(0).setParams(p);
+    sim.setGoal(0, {0.5, 0.0});
+    const double z0 = sim.character(0).segmentState(0).position.z();
+    sim.step(60);  // 0.5 s
+    const auto s = sim.character(0).segmentState(0);
+    *speed = s.linearVelocity.z();
+    return s.position.z() - z0;
+  };
+  double withSpeed = 0, withoutSpeed = 0;
+  const double with = advance(300, &withSpeed);
+  const double without = advance(0, &withoutSpeed);
+  EXPECT_GT(with - without, 0.03) << "with F_v " << with << " m, without " << without << " m";
+  EXPECT_GT(withSpeed - withoutSpeed, 0.1) << "with F_v " << withSpeed << " m/s, without " << withoutSpeed << " m/s";
 }
 
 // Whole-body stance (controller.cpp bodyStance, stance_forces.h): with all four feet planted and
@@ -214,8 +223,10 @@ TEST(SpeedRange, TheBipedFollowsARampUpAndDown) {
   const auto r = runWalk(o);
   ASSERT_FALSE(r.fell) << "fell after " << r.fallTime << " s";
   ASSERT_GT(r.trackingSamples, 40);
-  // Measured 72 of 123: below 0.5 m/s the capture-point placement walks 30-40 % fast.
-  EXPECT_GE(r.trackingWithin, r.trackingSamples / 2);
+  // Within ±10 % of the goal at a lag of up to 1 s: measured 123 of 123 (the push-robust preset,
+  // and the one before it). At exactly 1 s (the stricter reading) the preset before it met 72 of
+  // 123, and this one, which follows the goal more closely, 11.
+  EXPECT_GE(r.trackingWithin, r.trackingSamples * 9 / 10);
   EXPECT_LT(r.positionDrift, 0.2);                         // stopped: measured 0.05 m in 2 s
 }
 

@@ -230,6 +230,27 @@ TEST(SpeedRange, TheBipedFollowsARampUpAndDown) {
   EXPECT_LT(r.positionDrift, 0.2);                         // stopped: measured 0.05 m in 2 s
 }
 
+// The top of each preset's range (bench/walking.mjs's sweep, shortened): the biped runs at
+// 2.5 m/s with both feet off the ground between steps (2.51 m/s measured), the
+// quadruped trots at its top key, 2.1 m/s (it trots 15-20 % slow there).
+TEST(SpeedRange, TheBipedRunsAndTheQuadrupedTrotsAtTheTopOfTheirRange) {
+  WalkOptions o;
+  o.character = Character::Biped;
+  o.speed = 2.5;
+  o.seconds = 20;
+  const auto run = runWalk(o);
+  ASSERT_FALSE(run.fell) << "the run fell after " << run.fallTime << " s";
+  EXPECT_NEAR(run.meanSpeed, 2.5, 0.1 * 2.5);
+  // Both feet off the ground 8.6 % of the time (at 1.0 m/s the walk's quick steps leave the
+  // ground for 4.2 %: controller-notes §18).
+  EXPECT_GT(run.flightFraction, 0.06);
+  o.character = Character::Quadruped;
+  o.speed = 2.1;
+  const auto trot = runWalk(o);
+  ASSERT_FALSE(trot.fell) << "the trot fell after " << trot.fallTime << " s";
+  EXPECT_GT(trot.meanSpeed, 1.5);  // measured 1.66 over the second 10 s (1.78 over 60 s)
+}
+
 // Standing (goal 0), pushed forwards and backwards at 20 N·s: it steps to recover every time.
 TEST(SpeedRange, TheBipedRecoversFromPushesAtGoalZero) {
   for (const auto direction : {gaitlab::sim::PushDirection::Forward, gaitlab::sim::PushDirection::Backward}) {

@@ -186,7 +186,10 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     const { page, problems } = await openPage(server.url);
     await ready(page);
     const start = await freshCharacters(page);
-    await page.waitForFunction(() => window.gaitlab.stats().simTime >= 10.5, null, { timeout: PAGE_TIMEOUT, polling: 500 });
+    // Ten simulated seconds from the first sample (under load the page may be seconds into the
+    // walk by then: a fixed end time left a quadruped at 0.4 m/s short of 2 m).
+    const t0 = (await stats(page)).simTime;
+    await page.waitForFunction((t) => window.gaitlab.stats().simTime >= t + 10, t0, { timeout: PAGE_TIMEOUT, polling: 500 });
     const end = await freshCharacters(page);
     const fallen = end.filter((c) => c.fallen).map((c) => `${c.type} #${c.id}`);
     const stuck = end

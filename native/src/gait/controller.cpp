@@ -95,11 +95,15 @@ void Controller::setParams(const GaitParams& params) { setGait(Gait::single(para
 
 void Controller::setGait(const Gait& gait) {
   gait_ = gait;
-  blendAt(std::abs(desiredVelocity_.z()));
+  // A gait set before the first step (a gait file given at spawn: `gaitlab walk --params`, the
+  // optimiser's episodes) starts the gait player from its own footfall pattern, at the phase it
+  // was given, as if the character had been spawned with it; once walking, a new gait is taken
+  // up in mid-stride.
+  blendAt(std::abs(desiredVelocity_.z()), /*restart=*/!started_);
 }
 
-void Controller::blendAt(double speed) {
-  const bool first = player_.legCount() == 0;
+void Controller::blendAt(double speed, bool restart) {
+  const bool first = player_.legCount() == 0 || restart;
   paramsAtSpeed(character_, gait_, speed, &params_);
   blendedAt_ = speed;
   const GaitParams& params = params_;
@@ -109,7 +113,8 @@ void Controller::blendAt(double speed) {
     schedule[i].dutyFactor = params.legs[i].dutyFactor;
   }
   if (first) {
-    player_.configure(static_cast<int>(m_.legs.size()), schedule, params.period);
+    const double phase = player_.legCount() == 0 ? 0.0 : player_.phase();
+    player_.configure(static_cast<int>(m_.legs.size()), schedule, params.period, phase);
   } else {
     player_.setPeriod(params.period);
     for (size_t i = 0; i < m_.legs.size(); ++i) player_.setLegSchedule(static_cast<int>(i), schedule[i]);

@@ -100,8 +100,10 @@ class Controller {
   // Swing-hip twist scaling and the torque limit, last in every update.
   void finishTorques(const CharacterState& s, Eigen::Vector3d* torques) const;
 
-  // params_ from the gait's keys at |v_d|, and the gait player's period and schedule from them.
-  void blendAt(double speed);
+  // params_ from the gait's keys at |v_d|, and the gait player's period and schedule from them;
+  // with `restart` (a gait set before the first step) the player starts again from the schedule,
+  // at the phase it has.
+  void blendAt(double speed, bool restart = false);
 
   const body::Morphology& m_;
   Character character_;

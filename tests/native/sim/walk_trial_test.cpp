@@ -269,6 +269,34 @@ TEST(SpeedRange, TheBipedRecoversFromPushesAtGoalZero) {
   }
 }
 
+// A gait set before the first step starts the gait player from its own footfall pattern, as a
+// character spawned with it would (`gaitlab walk --params`, the optimiser's episodes): the
+// quadruped spawned with the trot and given the walk has the walk's legs in stance, and keeps a
+// start phase given before it. (It had kept the trot's, so a gait benchmarked from a file walked
+// differently from the same gait shipped as the preset.)
+TEST(WalkTrial, AGaitSetBeforeTheFirstStepStartsThePlayerFromItsPattern) {
+  gaitlab::gait::GaitFile walk;
+  const auto error = gaitlab::gait::loadGaitFile(
+      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-walk.json",
+      gaitlab::gait::Character::Quadruped, &walk);
+  ASSERT_FALSE(error) << error->describe();
+  const gaitlab::gait::GaitParams& p = walk.gait.primaryParams();
+  for (const double phase : {0.0, 0.3}) {
+    Simulation sim(1, 1);
+    sim.spawn(Character::Quadruped, 0, 0, 0);
+    sim.controller(0).setPhase(phase);
+    sim.controller(0).setGait(walk.gait);
+    gaitlab::gait::LegSchedule schedule[4];
+    for (int i = 0; i < 4; ++i) schedule[i] = {p.legs[i].stepTrigger, p.legs[i].dutyFactor};
+    gaitlab::gait::GaitPlayer own;
+    own.configure(4, schedule, p.period, phase);
+    const auto& player = sim.controller(0).player();
+    EXPECT_DOUBLE_EQ(player.phase(), phase);
+    EXPECT_DOUBLE_EQ(player.period(), p.period);
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(player.leg(i).stance, own.leg(i).stance) << "leg " << i << " at phase " << phase;
+  }
+}
+
 // A start phase is where the gait player starts (the walking benchmark's starts from 100 phases):
 // phase 0 is the gait's own start, bit for bit; another phase is another walk, which still walks.
 TEST(WalkTrial, AStartPhaseStartsTheGaitThere) {

@@ -3,7 +3,8 @@
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
-//                          [--only criteria,sweep,ramp,pushes,boxes,starts] [--jobs 2] [--step 0.1]
+//                          [--only criteria,sweep,ramp,pushes,boxes,starts,transitions] [--jobs 2]
+//                          [--step 0.1]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
 // gait file to measure instead of the preset: walking-<file name>.{json,md}). With --only, the
@@ -19,7 +20,8 @@
 //   - ramp: the goal from 0 up to the top speed and back to 0 over 60 s, then 20 s at 0: no fall,
 //     speed within ±10 % of the goal wherever the goal exceeds 0.3 m/s (after a lag of up to 1 s;
 //     the count at exactly 1 s is shown beside it),
-//     standing drift under 0.1 m over the last 20 s;
+//     standing drift under 0.1 m over the last 20 s; and the same ramp from 20 later starts
+//     (0.1–2 s of standing first): how many fall;
 //   - pushes: the push ladder in three directions (lateral, forward, backward) at the leg frame,
 //     walking at the cruise speed and standing (goal 0): 20 pushes at random phases per impulse;
 //     the largest impulse survived every time and in ≥ 90 % of them;
@@ -28,7 +30,12 @@
 //     speed and standing, 50 hits each; how many knocked it over (the goal: at most 1 in 5);
 //   - starts: from rest at 100 gait phases (0, 0.01, ... 0.99; a crowd starts each character at
 //     its own), 10 s at each of four goal speeds across the range: how many fall. The walking
-//     criteria's 12 starts vary the heading and a push; this varies where in its stride it starts.
+//     criteria's 12 starts vary the heading and a push; this varies where in its stride it starts;
+//   - transitions: the goal changes between two speeds every 1 to 4 s (at random, so at any phase
+//     of the stride), 8 changes per run, 20 runs per pair of speeds, for pairs across each change
+//     of gait (the quadruped's walk and trot, gait/gait_transition.h; the biped's walk and run,
+//     keys of one footfall pattern that blend) and from standing: how many runs fall, and how many
+//     changes of footfall pattern the runs made.
 // The walking criteria:
 //   - 60 s on flat ground at two goal speeds, one twice the other, without a fall;
 //   - mean speed within ±15 % of the goal; heading drift under 10° walking straight;
@@ -55,7 +62,7 @@ const opt = (name, fallback) => {
 const seconds = Number(opt('seconds', '60'));
 const jobs = Math.max(1, Number(opt('jobs', '2')));
 const sweepStep = Number(opt('step', '0.1'));
-const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes', 'starts'];
+const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes', 'starts', 'transitions'];
 const only = opt('only', SECTIONS.join(',')).split(',');
 for (const s of only) {
   if (!SECTIONS.includes(s)) {
@@ -84,6 +91,7 @@ const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 60, 80];  // N·s at the le
 const PUSH_EVERY = 2.5;                   // s: 20 pushes in 52 s
 const PUSH_DIRECTIONS = ['lateral', 'forward', 'backward'];
 const RAMP_SECONDS = 60, STAND_SECONDS = 20;
+const RAMP_REPEATS = 20, RAMP_REPEAT_STEP = 0.1;  // s of standing before each repeat's ramp
 const BOX_HITS = 50, BOX_FALLS_ALLOWED = 0.2;  // at most 1 in 5 hits may knock it over
 
 function walk(character, extra, wasm = false) {
@@ -247,6 +255,13 @@ async function measureRamp(character) {
   process.stderr.write(`${character}: ramp 0 → ${top} → 0 m/s over ${RAMP_SECONDS} s, then ${STAND_SECONDS} s standing\n`);
   const r = await walkAsync(character, ['--speed-schedule', schedule, '--seconds', RAMP_SECONDS + STAND_SECONDS,
     '--drift-window', STAND_SECONDS]);
+  // The same ramp from 20 later starts (0.1 to 2 s of standing first, so at other phases of the
+  // stride): one ramp is one sample of a chaotic system, and near the top of a range it may fall
+  // or not by chance.
+  const offsets = Array.from({ length: RAMP_REPEATS }, (_, k) => Math.round((k + 1) * 100 * RAMP_REPEAT_STEP) / 100);
+  const repeats = await Promise.all(offsets.map((d) => walkAsync(character, [
+    '--speed-schedule', `0:0,${d}:0,${d + RAMP_SECONDS / 2}:${top},${d + RAMP_SECONDS}:0`, '--seconds', d + RAMP_SECONDS])));
+  const repeatFalls = repeats.map((x, k) => (x.fell ? x.fall_time_s - offsets[k] : null)).filter((t) => t !== null);
   const within = r.tracking.samples ? r.tracking.within_10pct / r.tracking.samples : 0;
   const checks = [
     { what: 'ramp: no fall', ok: !r.fell, value: r.fell ? `fell at ${r.fall_time_s.toFixed(1)} s` : 'no fall' },
@@ -256,8 +271,12 @@ async function measureRamp(character) {
     { what: `ramp: standing drift under 0.1 m over the last ${STAND_SECONDS} s`, ok: !r.fell && r.position_drift_m < 0.1,
       value: `${r.position_drift_m.toFixed(3)} m` },
   ];
+  checks.push({ what: `ramp from ${RAMP_REPEATS} later starts (after ${offsets[0]}–${offsets.at(-1)} s standing): no fall`,
+    ok: repeatFalls.length === 0,
+    value: repeatFalls.length ? `${repeatFalls.length} of ${RAMP_REPEATS} fell, ${repeatFalls.map((t) => t.toFixed(1)).join(', ')} s into the ramp` : 'none fell' });
   return { ...stamp, schedule, fell: r.fell, fall_time_s: r.fall_time_s, tracking: r.tracking,
-    standing_drift_m: r.position_drift_m, checks };
+    standing_drift_m: r.position_drift_m, repeats: RAMP_REPEATS, repeat_falls: repeatFalls.length,
+    repeat_fall_times_s: repeatFalls, checks };
 }
 
 // The push ladder: three directions, walking at the cruise speed and standing. The ladder
@@ -319,6 +338,46 @@ async function measureStarts(character) {
   return { ...stamp, seconds: START_SECONDS, rows };
 }
 
+// Gait changes in mid-stride: the goal alternates between the two speeds of a pair, each held
+// for 1 to 4 s (drawn by a seeded generator, so every run is reproducible), 9 holds per run.
+const TRANSITION_PAIRS = {
+  biped: [[0, 1.0], [0.5, 2.5], [1.0, 2.5]],
+  quadruped: [[0, 0.2], [0.2, 0.6], [0, 0.6], [0.1, 1.0]],
+};
+const TRANSITION_RUNS = 20, TRANSITION_HOLDS = 9;
+function transitionSchedule(lo, hi, seed) {
+  let a = seed >>> 0;  // mulberry32
+  const random = () => {
+    a = (a + 0x6d2b79f5) >>> 0;
+    let t = Math.imul(a ^ (a >>> 15), 1 | a);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+  const points = [];
+  let t = 0;
+  for (let k = 0; k < TRANSITION_HOLDS; k++) {
+    const goal = k % 2 === 0 ? lo : hi;
+    const hold = 1 + 3 * random();
+    points.push(`${t.toFixed(3)}:${goal}`, `${(t + hold - 0.001).toFixed(3)}:${goal}`);
+    t += hold;
+  }
+  return { schedule: points.join(','), seconds: Math.round(t * 1000) / 1000 };
+}
+async function measureTransitions(character) {
+  const rows = await Promise.all(TRANSITION_PAIRS[character].map(async ([lo, hi]) => {
+    process.stderr.write(`${character}: ${TRANSITION_RUNS} runs changing the goal between ${lo} and ${hi} m/s\n`);
+    const runs = await Promise.all(Array.from({ length: TRANSITION_RUNS }, (_, k) => {
+      const { schedule, seconds: s } = transitionSchedule(lo, hi, k + 1);
+      return walkAsync(character, ['--speed-schedule', schedule, '--seconds', s])
+        .then((r) => ({ seed: k + 1, fell: r.fell, fall_time_s: r.fall_time_s, gait_changes: r.gait_changes }));
+    }));
+    const fell = runs.filter((x) => x.fell);
+    return { speeds: [lo, hi], runs: runs.length, goal_changes_per_run: TRANSITION_HOLDS - 1, falls: fell.length,
+      fall_times_s: fell.map((x) => x.fall_time_s), gait_changes: runs.reduce((n, x) => n + x.gait_changes, 0) };
+  }));
+  return { ...stamp, rows };
+}
+
 for (const character of characters) {
   const r = (report.characters[character] ??= {});
   const measured = await Promise.all([
@@ -328,6 +387,7 @@ for (const character of characters) {
     only.includes('pushes') ? measurePushes(character) : null,
     only.includes('boxes') ? measureBoxes(character) : null,
     only.includes('starts') ? measureStarts(character) : null,
+    only.includes('transitions') ? measureTransitions(character) : null,
   ]);
   SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
   // Results of the previous layout (criteria at the top level) are not carried on.
@@ -406,6 +466,16 @@ for (const [character, r] of Object.entries(report.characters)) {
     lines.push(`### Starts from rest at ${START_PHASES} gait phases (${st.seconds} s each; ${st.measured.slice(0, 10)}, ${st.commit})`, '',
       '| goal m/s | fell | at phases |', '|---|---|---|');
     for (const row of st.rows) lines.push(`| ${row.speed} | ${row.falls} of ${row.starts} | ${row.fell_at_phases.join(', ') || '–'} |`);
+    lines.push('');
+  }
+  const tr = r.transitions;
+  if (tr) {
+    lines.push(`### Gait changes in mid-stride (the goal changes between two speeds every 1–4 s, ${TRANSITION_HOLDS - 1} times per run; ${tr.measured.slice(0, 10)}, ${tr.commit})`, '',
+      '| goal speeds m/s | runs that fell | changes of footfall pattern made | fell at s |', '|---|---|---|---|');
+    for (const row of tr.rows) {
+      lines.push(`| ${row.speeds.join(' ↔ ')} | ${row.falls} of ${row.runs} | ${row.gait_changes} | ` +
+        `${row.fall_times_s.map((t) => t.toFixed(1)).join(', ') || '–'} |`);
+    }
     lines.push('');
   }
 }

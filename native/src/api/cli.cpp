@@ -266,6 +266,7 @@ int walk(int argc, char** argv) {
       {"push_direction", direction},
       {"position_drift_m", r.positionDrift},
       {"flight_fraction", r.flightFraction},
+      {"gait_changes", r.gaitChanges},
       {"controller_us_per_step", r.controllerMicrosPerStep},
       {"seed", w.seed},
       {"state_hash", r.stateHash},

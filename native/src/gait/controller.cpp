@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gait/foot_placement.h"
+#include "gait/gait_transition.h"
 #include "gait/gravity.h"
 #include "gait/heading.h"
 #include "gait/ik.h"
@@ -104,7 +105,16 @@ void Controller::setGait(const Gait& gait) {
 
 void Controller::blendAt(double speed, bool restart) {
   const bool first = player_.legCount() == 0 || restart;
+  const int legs = static_cast<int>(m_.legs.size());
+  LegParams before[kMaxLegs];
+  std::copy(params_.legs, params_.legs + kMaxLegs, before);
   paramsAtSpeed(character_, gait_, speed, &params_);
+  // A change of footfall pattern in mid-stride (gait/gait_transition.h): the gait phase moves so
+  // that each leg's own phase moves as little as the two patterns allow.
+  if (!first && footfallDiffers(before, params_.legs, legs)) {
+    player_.shiftPhase(transitionPhaseShift(before, params_.legs, legs));
+    ++gaitChanges_;
+  }
   blendedAt_ = speed;
   const GaitParams& params = params_;
   LegSchedule schedule[kMaxLegs];
@@ -149,9 +159,10 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   velocityH.y() = 0;
   desiredVelocity_ = rampDesiredVelocity(desiredVelocity_, Vector3d(0, 0, goal_.speed),
                                          params_.maxAcceleration, dt);
-  // Speed keys (gait/speed_keys.h): the parameters follow the desired speed as it ramps. With one
-  // key there is nothing to blend, nor while the speed stays below the first key or above the
-  // last (a crowd ramping up from 0 to its cruise speed below the first key copies nothing).
+  // Speed keys (gait/speed_keys.h): the parameters follow the desired speed as it ramps, and the
+  // gait changes where the keys' footfall patterns do (gait/gait_transition.h). With one key
+  // there is nothing to blend, nor while the speed stays below the first key or above the last
+  // (a crowd ramping up from 0 to its cruise speed below the first key copies nothing).
   if (gait_.keys.size() > 1 && !gait_.heldAlike(desiredVelocity_.z(), blendedAt_)) blendAt(std::abs(desiredVelocity_.z()));
   // Speed tracking (speedIntegralGain, beyond the thesis): F_v = K_v (v_d − v) alone leaves a
   // speed error that depends on the speed (the biped walked 0.92 m/s at 1.0 and 1.53 at 1.4,

@@ -62,6 +62,8 @@ class Controller {
   const GaitPlayer& player() const { return player_; }
   // Restarts the gait at phase Φ (a crowd whose members start out of step).
   void setPhase(double phase) { player_.reset(phase); }
+  // Changes of footfall pattern (gait transitions, gait/gait_transition.h) since the spawn.
+  int gaitChanges() const { return gaitChanges_; }
   double desiredHeading() const { return desiredHeading_; }
   const Eigen::Vector3d& desiredVelocity() const { return desiredVelocity_; }  // heading frame
 
@@ -110,6 +112,7 @@ class Controller {
   Gait gait_;
   GaitParams params_;
   double blendedAt_ = 0;  // the |v_d| params_ was blended at (m/s)
+  int gaitChanges_ = 0;
   Goal goal_;
   GaitPlayer player_;
   std::vector<LegGeometry> geometry_;

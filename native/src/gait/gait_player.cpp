@@ -44,6 +44,10 @@ void GaitPlayer::setLegSchedule(int leg, const LegSchedule& schedule) {
   schedule_[leg].dutyFactor = clampDuty(schedule.dutyFactor);
 }
 
+void GaitPlayer::shiftPhase(double dPhase) {
+  if (std::isfinite(dPhase)) phase_ = frac(phase_ + dPhase);
+}
+
 void GaitPlayer::setLateStrike(const LateStrikeParams& p) {
   late_.rate = std::isfinite(p.rate) ? std::max(0.0, p.rate) : 0.0;
   late_.maxOffset = std::isfinite(p.maxOffset) ? std::max(0.0, p.maxOffset) : 0.0;

@@ -70,6 +70,10 @@ class GaitPlayer {
   void setPeriod(double period);
   void setLegSchedule(int leg, const LegSchedule& schedule);
   void setLateStrike(const LateStrikeParams& p);  // negative or NaN values become 0
+  // Φ += dPhase, the legs' schedules unchanged (a gait transition re-aligning the phase to a new
+  // footfall pattern, gait/gait_transition.h). As with an edited trigger, a leg whose ψ moves
+  // back starts a new swing at the next update.
+  void shiftPhase(double dPhase);
 
   // Φ := phase; every leg takes the role its schedule gives; offsets and statistics cleared.
   // A leg that starts in swing has its lift-off at the reset (a character is spawned with its

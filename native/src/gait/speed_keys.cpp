@@ -5,6 +5,8 @@
 #include <cstring>
 #include <type_traits>
 
+#include "gait/gait_transition.h"
+
 namespace gaitlab::gait {
 
 // paramsAtSpeed finds a field of one GaitParams in another by its byte offset: every field is a
@@ -52,6 +54,13 @@ void paramsAtSpeed(Character c, const Gait& gait, double speed, GaitParams* out)
   while (keys[hi].speed <= s) ++hi;
   const SpeedKey& a = keys[hi - 1];
   const SpeedKey& b = keys[hi];
+  // Between keys of different footfall patterns nothing is blended: the key of the half the
+  // speed is in (a gait transition, gait/gait_transition.h).
+  const int legs = static_cast<int>(legNames(c).size());
+  if (footfallDiffers(a.params.legs, b.params.legs, legs)) {
+    *out = s < 0.5 * (a.speed + b.speed) ? a.params : b.params;
+    return;
+  }
   const double t = (s - a.speed) / (b.speed - a.speed);
   *out = a.params;
   // One pointer captured: the visitor's std::function keeps it without allocating.

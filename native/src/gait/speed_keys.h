@@ -11,9 +11,10 @@
 // With one key a gait is exactly the parameter set it holds (every gait file before schema 4).
 //
 // A key holds every field, footfall pattern included (step triggers, duty factors, period), so a
-// key may be a different gait (a run beside a walk, a gallop beside a trot) and moving between
-// keys is a transition in mid-stride: the gait player keeps its phase and takes the blended
-// period and schedule step by step.
+// key may be a different gait (a run beside a walk, a walk below a trot) and moving between keys
+// is a change in mid-stride: between keys of one footfall pattern the gait player keeps its phase
+// and takes the blended period and schedule step by step; between keys of different patterns
+// nothing is blended and the gait changes at the middle speed (gait/gait_transition.h).
 #pragma once
 #include <vector>
 
@@ -50,8 +51,9 @@ struct Gait {
 };
 
 // The parameters in effect at desired speed `speed` (its magnitude: a gait has no keys for walking
-// backwards): the keys' values linear in speed between the two keys around it, the first key's
-// below the first speed, the last key's above the last. Every field of the character's schema is
+// backwards): the keys' values linear in speed between the two keys around it (or, if their
+// footfall patterns differ, the nearer key's), the first key's below the first speed, the last
+// key's above the last. Every field of the character's schema is
 // blended; fields it does not use are the lower key's. No heap allocation, so the controller can
 // call it every step.
 void paramsAtSpeed(Character c, const Gait& gait, double speed, GaitParams* out);

@@ -171,6 +171,7 @@ WalkResult runWalk(const WalkOptions& o) {
   const Eigen::Vector3d drift = end.position - (steps > driftFrom ? driftStart : end.position);
   r.positionDrift = std::hypot(drift.x(), drift.z());
   r.flightFraction = secondHalfSteps ? static_cast<double>(flightSteps) / secondHalfSteps : 0.0;
+  r.gaitChanges = sim.controller(0).gaitChanges();
   if (!o.speedSchedule.empty()) {
     // Samples k at t = 0.1 (k + 1) s: the speed over the window [t − 2, t] (centre t − 1) against
     // the goal at the centre less a lag L of 0 to 1 s, the best L (the criterion's "after a lag

@@ -61,6 +61,8 @@ struct WalkResult {
   double positionDrift = 0;     // m
   // Share of the second half's steps with no foot on the ground (a run's flight phases).
   double flightFraction = 0;
+  // Changes of footfall pattern in the run (a gait of walk and trot keys, gait/gait_transition.h).
+  int gaitChanges = 0;
   // Speed tracking (a schedule): the speed measured over a 2 s window against the goal at the
   // window's centre less a lag of up to 1 s, wherever the goal 1 s before the centre exceeds
   // 0.3 m/s (the walking benchmark's ramp criterion: within ±10 % after a lag of 1 s). Samples

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "gait/gait_player.h"
 
@@ -263,4 +264,22 @@ TEST(GaitPlayer, DutyFactorIsClampedAndCapacityFixed) {
 }
 
 }  // namespace
+// shiftPhase moves Φ and every ψ with it: a leg whose ψ moves back past its trigger starts a new
+// swing (as with an edited trigger); a leg whose ψ moves forwards within its cycle keeps its role.
+TEST(GaitPlayer, AShiftedPhaseMovesEveryLegsPhase) {
+  GaitPlayer g;
+  const LegSchedule legs[2] = {{0.0, 0.6}, {0.5, 0.6}};
+  g.configure(2, legs, 1.0, 0.45);  // ψ = 0.45 and 0.95: both in stance
+  g.update(0.01, nullptr);
+  g.shiftPhase(0.04);  // ψ 0.46 → 0.51 and 0.96 → 0.01 (after the next update's advance)
+  g.update(0.01, nullptr);
+  EXPECT_NEAR(g.phase(), 0.51, 1e-9);
+  EXPECT_TRUE(g.leg(0).stance);
+  EXPECT_EQ(g.leg(0).liftOffs, 0);
+  EXPECT_FALSE(g.leg(1).stance);
+  EXPECT_EQ(g.leg(1).liftOffs, 1);
+  g.shiftPhase(std::numeric_limits<double>::quiet_NaN());  // ignored
+  EXPECT_NEAR(g.phase(), 0.51, 1e-9);
+}
+
 }  // namespace gaitlab::gait

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gait/defaults.h"
+#include "gait/gait_transition.h"
 #include "gait/params_io.h"
 #include "sim/simulation.h"
 #include "sim/walk_trial.h"
@@ -186,6 +187,71 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
     const double now = sim.character(0).segmentState(0).position.z();
     EXPECT_GT(now - z, walking ? 0.8 : 2.0) << "part " << part << " of the run";
     z = now;
+  }
+}
+
+// The quadruped preset chooses its gait by speed (gait/gait_transition.h): the walk below 0.3 m/s,
+// the trot above. The goal changes between 0.2 and 0.6 m/s every 1 to 4 s, so the gait changes at
+// whatever phase the stride is in: it never falls, and walks with the walk's footfall pattern at
+// 0.2 m/s and the trot's at 0.6. (The walking benchmark's transition trial does 20 such runs per
+// pair of speeds; without the phase shift at the change, 5 of 20 runs between standing and the
+// trot fell there.)
+TEST(QuadrupedGaits, ThePresetChangesBetweenWalkAndTrotBySpeedInMidStride) {
+  gaitlab::gait::GaitFile walk;
+  const auto error = gaitlab::gait::loadGaitFile(
+      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-walk.json",
+      gaitlab::gait::Character::Quadruped, &walk);
+  ASSERT_FALSE(error) << error->describe();
+  const auto& walkLegs = walk.gait.primaryParams().legs;
+  const auto& trotLegs = gaitlab::gait::defaultParams(Character::Quadruped).legs;  // the 0.8 m/s key
+  ASSERT_TRUE(gaitlab::gait::footfallDiffers(walkLegs, trotLegs, 4));
+  const double dwell[] = {2.3, 1.1, 3.7, 1.9, 2.9, 1.4, 3.2, 2.6, 1.7, 3.9};  // s, arbitrary
+  for (double startPhase : {0.0, 0.37, 0.71}) {
+    Simulation sim(1, 1);
+    sim.spawn(Character::Quadruped, 0, 0, 0);
+    sim.controller(0).setPhase(startPhase);
+    double walked = 0;
+    for (int part = 0; part < 10; ++part) {
+      const bool walking = part % 2 == 0;
+      sim.setGoal(0, {walking ? 0.2 : 0.6, 0.0});
+      const double z = sim.character(0).segmentState(0).position.z();
+      const int steps = static_cast<int>(dwell[part] * 120);
+      for (int step = 0; step < steps; ++step) {
+        sim.step(1);
+        ASSERT_FALSE(gaitlab::sim::hasFallen(sim, 0))
+            << "start phase " << startPhase << ": fell " << step / 120.0 << " s into part " << part;
+      }
+      walked += sim.character(0).segmentState(0).position.z() - z;
+      const auto& legs = sim.controller(0).params().legs;
+      EXPECT_FALSE(gaitlab::gait::footfallDiffers(legs, walking ? walkLegs : trotLegs, 4))
+          << "start phase " << startPhase << ", part " << part << ": not the " << (walking ? "walk" : "trot");
+    }
+    EXPECT_GT(walked, 8.0) << "start phase " << startPhase;  // 27 s at 0.2 and 0.6 m/s, ramps between
+  }
+}
+
+// The pace (public/presets/quadruped-pace.json): the lateral pairs lift together (front left with
+// back left, front right with back right, each pair within 0.15 of a cycle), and it walks 0.4 and
+// 0.8 m/s within ±15 % (the walking benchmark: every goal from 0.4 to 1.3 m/s within ±10 %).
+TEST(QuadrupedGaits, ThePaceWalks) {
+  gaitlab::gait::GaitFile pace;
+  const auto error = gaitlab::gait::loadGaitFile(
+      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-pace.json",
+      gaitlab::gait::Character::Quadruped, &pace);
+  ASSERT_FALSE(error) << error->describe();
+  const auto& legs = pace.gait.primaryParams().legs;  // front left, front right, back left, back right
+  EXPECT_LT(std::abs(std::remainder(legs[0].stepTrigger - legs[2].stepTrigger, 1.0)), 0.15);
+  EXPECT_LT(std::abs(std::remainder(legs[1].stepTrigger - legs[3].stepTrigger, 1.0)), 0.15);
+  WalkOptions o;
+  o.character = Character::Quadruped;
+  o.gait = &pace.gait;
+  o.seconds = 20;
+  for (double speed : {0.4, 0.8}) {
+    o.speed = speed;
+    const auto r = runWalk(o);
+    ASSERT_FALSE(r.fell) << speed << " m/s: the pace fell after " << r.fallTime << " s";
+    EXPECT_NEAR(r.meanSpeed, speed, 0.15 * speed);
+    EXPECT_LT(r.headingDrift, 10.0);
   }
 }
 

@@ -20,22 +20,28 @@ import type { CharacterStatus } from '../sim/protocol';
 import type { SimClient } from '../sim/sim-client';
 
 /**
- * The quadruped's gaits. Walk and trot are whole gaits, each tuned by the optimiser for its own
- * footfall pattern (public/presets/quadruped.json is the trot, quadruped-walk.json the walk);
- * choosing one switches the running characters to it in mid-stride. Pace and bound are only
- * footfall patterns (Hildebrand's gait diagrams, as in the thesis's Figure 2.1: per leg the step
- * trigger, the phase of lift-off, and the duty factor) laid over the gait being edited; no gait
- * has been tuned for them, and they fall. A pattern says per leg, from the schema's morphology
- * (its leg frame and side), [step trigger, duty factor].
+ * The quadruped's gaits. The preset (public/presets/quadruped.json) chooses by speed: the walk
+ * below 0.3 m/s, the trot above, changing in mid-stride (native/src/gait/gait_transition.h).
+ * Walk, trot and pace pin one gait, each tuned by the optimiser for its own footfall pattern
+ * (quadruped-walk.json, quadruped-trot.json, quadruped-pace.json); choosing one switches the
+ * running characters to it in mid-stride. Bound is only a footfall pattern (Hildebrand's gait
+ * diagrams, as in the thesis's Figure 2.1: per leg the step trigger, the phase of lift-off, and
+ * the duty factor) laid over the gait being edited; no gait has been tuned for it, and it falls.
+ * A pattern says per leg, from the schema's morphology (its leg frame and side), [step trigger,
+ * duty factor].
  */
-const QUADRUPED_GAIT_FILES: Record<string, string> = { walk: 'presets/quadruped-walk.json', trot: 'presets/quadruped.json' };
+const QUADRUPED_BY_SPEED = 'by speed: walk, trot';
+const QUADRUPED_GAIT_FILES: Record<string, string> = {
+  [QUADRUPED_BY_SPEED]: 'presets/quadruped.json',
+  walk: 'presets/quadruped-walk.json',
+  trot: 'presets/quadruped-trot.json',
+  pace: 'presets/quadruped-pace.json',
+};
 const QUADRUPED_PATTERNS: Record<string, (leg: SchemaLeg) => [number, number]> = {
-  // Lateral pairs together.
-  pace: (leg) => [leg.side === 'left' ? 0 : 0.5, 0.6],
   // Fore pair (the first leg frame's legs), then hind pair.
   bound: (leg) => [leg.legFrame === 0 ? 0 : 0.5, 0.5],
 };
-/** The choices as offered: the patterns no gait is tuned for are marked experimental (they fall). */
+/** The choices as offered: the pattern no gait is tuned for is marked experimental (it falls). */
 const QUADRUPED_GAITS: Record<string, string> = Object.fromEntries([
   ...Object.keys(QUADRUPED_GAIT_FILES).map((name) => [name, name]),
   ...Object.keys(QUADRUPED_PATTERNS).map((name) => [`${name} (experimental: falls)`, name]),
@@ -122,7 +128,7 @@ export class GaitEditors {
       .onChange((t: CharacterType) => {
         if (this.model.target.id === 'all') void this.load({ id: 'all', character: t });
       });
-    const pattern = { quadrupedGait: 'trot' };
+    const pattern = { quadrupedGait: QUADRUPED_BY_SPEED };
     folder
       .add(pattern, 'quadrupedGait', QUADRUPED_GAITS)
       .name('quadruped gait')

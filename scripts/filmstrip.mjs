@@ -4,7 +4,7 @@
 // with its simulated time, and saved as one PNG (the README's gait sequences).
 //
 //   node scripts/filmstrip.mjs --type biped [--frames 8] [--every 12] [--warmup 480]
-//                              [--speed M_S] [--gait walk|trot] [--out docs/images/biped-gait.png]
+//                              [--speed M_S] [--gait walk|trot|pace] [--out docs/images/biped-gait.png]
 //
 // Needs the WASM build (npm run build) and Chromium (CHROMIUM=/path overrides /usr/bin/chromium).
 import fs from 'node:fs';
@@ -85,7 +85,7 @@ try {
   if (!subject) throw new Error(`no ${args.type} in the scene`);
   if (speed !== null) await page.evaluate(([id, v]) => window.gaitlab.setGoal(id, { speed: v, turn: 0 }), [subject.id, speed]);
   if (args.gait) {
-    // The quadruped's gait menu of the demo (walk or trot: whole tuned gaits).
+    // The quadruped's gait menu of the demo (walk, trot or pace: whole tuned gaits).
     if (args.type !== 'quadruped') usage('--gait is for the quadruped');
     await page.locator('.lil-controller', { hasText: 'quadruped gait' }).locator('select').selectOption(args.gait);
     await page.waitForTimeout(1000);

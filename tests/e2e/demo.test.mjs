@@ -204,13 +204,14 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.close();
   });
 
-  it('the quadrupeds switch from trot to walk and back in mid-stride, and keep walking', { timeout: TEST_TIMEOUT }, async (t) => {
+  it('the quadrupeds switch from trot to walk, to pace and back in mid-stride, and keep walking', { timeout: TEST_TIMEOUT }, async (t) => {
     const { page, problems } = await openPage(`${server.url}?characters=4`);
     await ready(page);
     if (await needsSchema(t, page)) return;
     const quadrupeds = (await page.evaluate(() => window.gaitlab.characters())).filter((c) => c.type === 'quadruped').map((c) => c.id);
     assert.equal(quadrupeds.length, 2);
     const walk = await page.evaluate(async () => (await fetch('presets/quadruped-walk.json')).json());
+    const pace = await page.evaluate(async () => (await fetch('presets/quadruped-pace.json')).json());
     const gaitSelect = page.locator('.lil-controller', { hasText: 'quadruped gait' }).locator('select');
     const simTime = async () => (await stats(page)).simTime;
 
@@ -230,13 +231,17 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     for (const id of quadrupeds) await gaitReaches(id, walk.params, `quadruped #${id} walks with the walk preset`);
     const switched = await simTime();
     await page.waitForFunction((t0) => window.gaitlab.stats().simTime >= t0 + 5, switched, { timeout: PAGE_TIMEOUT, polling: 250 });
+    await gaitSelect.selectOption('pace');
+    for (const id of quadrupeds) await gaitReaches(id, pace.params, `quadruped #${id} paces`);
+    const paced = await simTime();
+    await page.waitForFunction((t0) => window.gaitlab.stats().simTime >= t0 + 5, paced, { timeout: PAGE_TIMEOUT, polling: 250 });
     await gaitSelect.selectOption('trot');
     const trot = await page.evaluate(() => window.gaitlab.presetGait('quadruped'));
     for (const id of quadrupeds) await gaitReaches(id, trot.params, `quadruped #${id} trots again`);
     const back = await simTime();
     await page.waitForFunction((t0) => window.gaitlab.stats().simTime >= t0 + 5, back, { timeout: PAGE_TIMEOUT, polling: 250 });
     const fallen = (await freshCharacters(page)).filter((c) => c.fallen).map((c) => `${c.type} #${c.id}`);
-    assert.deepEqual(fallen, [], 'nobody fell over the two switches');
+    assert.deepEqual(fallen, [], 'nobody fell over the three switches');
     assert.deepEqual(problems, [], 'no page errors');
     await page.close();
   });

@@ -154,8 +154,9 @@ TEST(SwingLeg, FollowingTheTargetsVelocityKeepsTheDutyFactor) {
 }
 
 // The quadruped's second gait, a lateral-sequence walk (public/presets/quadruped-walk.json): it
-// walks on its own, and a quadruped switches from it to the trot preset and back in mid-stride
-// (new parameters at any phase; the gait player keeps its phase) without falling.
+// walks on its own, and a quadruped switches from it to the trot and back in mid-stride (new
+// parameters at any phase; the gait phase moves to the new footfall pattern, gait_transition.h)
+// without falling.
 TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
   gaitlab::gait::GaitFile walk;
   const auto error = gaitlab::gait::loadGaitFile(

@@ -251,7 +251,9 @@ async function measureSweep(character) {
 // The ramp: 0 → top → 0 over 60 s, then standing.
 async function measureRamp(character) {
   const { top } = GOALS[character];
-  const schedule = `0:0,${RAMP_SECONDS / 2}:${top},${RAMP_SECONDS}:0`;
+  // The ramp after `d` s of standing.
+  const rampAfter = (d) => `${d > 0 ? `0:0,${d}:0` : '0:0'},${d + RAMP_SECONDS / 2}:${top},${d + RAMP_SECONDS}:0`;
+  const schedule = rampAfter(0);
   process.stderr.write(`${character}: ramp 0 → ${top} → 0 m/s over ${RAMP_SECONDS} s, then ${STAND_SECONDS} s standing\n`);
   const r = await walkAsync(character, ['--speed-schedule', schedule, '--seconds', RAMP_SECONDS + STAND_SECONDS,
     '--drift-window', STAND_SECONDS]);
@@ -259,8 +261,7 @@ async function measureRamp(character) {
   // stride): one ramp is one sample of a chaotic system, and near the top of a range it may fall
   // or not by chance.
   const offsets = Array.from({ length: RAMP_REPEATS }, (_, k) => Math.round((k + 1) * 100 * RAMP_REPEAT_STEP) / 100);
-  const repeats = await Promise.all(offsets.map((d) => walkAsync(character, [
-    '--speed-schedule', `0:0,${d}:0,${d + RAMP_SECONDS / 2}:${top},${d + RAMP_SECONDS}:0`, '--seconds', d + RAMP_SECONDS])));
+  const repeats = await Promise.all(offsets.map((d) => walkAsync(character, ['--speed-schedule', rampAfter(d), '--seconds', d + RAMP_SECONDS])));
   const repeatFalls = repeats.map((x, k) => (x.fell ? x.fall_time_s - offsets[k] : null)).filter((t) => t !== null);
   const within = r.tracking.samples ? r.tracking.within_10pct / r.tracking.samples : 0;
   const checks = [
@@ -270,10 +271,10 @@ async function measureRamp(character) {
         ` (at a lag of exactly 1 s: ${r.tracking.within_10pct_lag_1s}/${r.tracking.samples})` },
     { what: `ramp: standing drift under 0.1 m over the last ${STAND_SECONDS} s`, ok: !r.fell && r.position_drift_m < 0.1,
       value: `${r.position_drift_m.toFixed(3)} m` },
+    { what: `ramp from ${RAMP_REPEATS} later starts (after ${offsets[0]}–${offsets.at(-1)} s standing): no fall`,
+      ok: repeatFalls.length === 0,
+      value: repeatFalls.length ? `${repeatFalls.length} of ${RAMP_REPEATS} fell, ${repeatFalls.map((t) => t.toFixed(1)).join(', ')} s into the ramp` : 'none fell' },
   ];
-  checks.push({ what: `ramp from ${RAMP_REPEATS} later starts (after ${offsets[0]}–${offsets.at(-1)} s standing): no fall`,
-    ok: repeatFalls.length === 0,
-    value: repeatFalls.length ? `${repeatFalls.length} of ${RAMP_REPEATS} fell, ${repeatFalls.map((t) => t.toFixed(1)).join(', ')} s into the ramp` : 'none fell' });
   return { ...stamp, schedule, fell: r.fell, fall_time_s: r.fall_time_s, tracking: r.tracking,
     standing_drift_m: r.position_drift_m, repeats: RAMP_REPEATS, repeat_falls: repeatFalls.length,
     repeat_fall_times_s: repeatFalls, checks };

@@ -124,10 +124,10 @@ void Controller::blendAt(double speed, bool restart) {
   }
   if (first) {
     const double phase = player_.legCount() == 0 ? 0.0 : player_.phase();
-    player_.configure(static_cast<int>(m_.legs.size()), schedule, params.period, phase);
+    player_.configure(legs, schedule, params.period, phase);
   } else {
     player_.setPeriod(params.period);
-    for (size_t i = 0; i < m_.legs.size(); ++i) player_.setLegSchedule(static_cast<int>(i), schedule[i]);
+    for (int i = 0; i < legs; ++i) player_.setLegSchedule(i, schedule[i]);
   }
 }
 

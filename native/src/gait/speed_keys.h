@@ -53,9 +53,8 @@ struct Gait {
 // The parameters in effect at desired speed `speed` (its magnitude: a gait has no keys for walking
 // backwards): the keys' values linear in speed between the two keys around it (or, if their
 // footfall patterns differ, the nearer key's), the first key's below the first speed, the last
-// key's above the last. Every field of the character's schema is
-// blended; fields it does not use are the lower key's. No heap allocation, so the controller can
-// call it every step.
+// key's above the last. Every field of the character's schema is blended; fields it does not use
+// are the lower key's. No heap allocation, so the controller can call it every step.
 void paramsAtSpeed(Character c, const Gait& gait, double speed, GaitParams* out);
 
 }  // namespace gaitlab::gait

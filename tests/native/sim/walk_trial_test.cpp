@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "gait/defaults.h"
 #include "gait/gait_transition.h"
@@ -27,6 +28,12 @@ class Walking : public testing::TestWithParam<Case> {};
 std::string caseName(const testing::TestParamInfo<Case>& info) {
   return std::string(info.param.character == Character::Biped ? "biped" : "quadruped") + "_at_" +
          std::to_string(static_cast<int>(std::lround(info.param.speed * 100))) + "cm_s";
+}
+
+// One of the quadruped's shipped gait files (public/presets/NAME), read as the CLI reads it.
+std::optional<gaitlab::gait::ParamsError> loadQuadrupedPreset(const char* name, gaitlab::gait::GaitFile* out) {
+  return gaitlab::gait::loadGaitFile(std::string(GAITLAB_SOURCE_DIR) + "/public/presets/" + name,
+                                     gaitlab::gait::Character::Quadruped, out);
 }
 
 }  // namespace
@@ -159,9 +166,7 @@ TEST(SwingLeg, FollowingTheTargetsVelocityKeepsTheDutyFactor) {
 // without falling.
 TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
   gaitlab::gait::GaitFile walk;
-  const auto error = gaitlab::gait::loadGaitFile(
-      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-walk.json",
-      gaitlab::gait::Character::Quadruped, &walk);
+  const auto error = loadQuadrupedPreset("quadruped-walk.json", &walk);
   ASSERT_FALSE(error) << error->describe();
   WalkOptions o;
   o.character = Character::Quadruped;
@@ -199,9 +204,7 @@ TEST(QuadrupedGaits, TheWalkWalksAndSwitchesWithTheTrot) {
 // trot fell there.)
 TEST(QuadrupedGaits, ThePresetChangesBetweenWalkAndTrotBySpeedInMidStride) {
   gaitlab::gait::GaitFile walk;
-  const auto error = gaitlab::gait::loadGaitFile(
-      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-walk.json",
-      gaitlab::gait::Character::Quadruped, &walk);
+  const auto error = loadQuadrupedPreset("quadruped-walk.json", &walk);
   ASSERT_FALSE(error) << error->describe();
   const auto& walkLegs = walk.gait.primaryParams().legs;
   const auto& trotLegs = gaitlab::gait::defaultParams(Character::Quadruped).legs;  // the 0.8 m/s key
@@ -236,9 +239,7 @@ TEST(QuadrupedGaits, ThePresetChangesBetweenWalkAndTrotBySpeedInMidStride) {
 // 0.8 m/s within ±15 % (the walking benchmark: every goal from 0.4 to 1.3 m/s within ±10 %).
 TEST(QuadrupedGaits, ThePaceWalks) {
   gaitlab::gait::GaitFile pace;
-  const auto error = gaitlab::gait::loadGaitFile(
-      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-pace.json",
-      gaitlab::gait::Character::Quadruped, &pace);
+  const auto error = loadQuadrupedPreset("quadruped-pace.json", &pace);
   ASSERT_FALSE(error) << error->describe();
   const auto& legs = pace.gait.primaryParams().legs;  // front left, front right, back left, back right
   EXPECT_LT(std::abs(std::remainder(legs[0].stepTrigger - legs[2].stepTrigger, 1.0)), 0.15);
@@ -343,9 +344,7 @@ TEST(SpeedRange, TheBipedRecoversFromPushesAtGoalZero) {
 // differently from the same gait shipped as the preset.)
 TEST(WalkTrial, AGaitSetBeforeTheFirstStepStartsThePlayerFromItsPattern) {
   gaitlab::gait::GaitFile walk;
-  const auto error = gaitlab::gait::loadGaitFile(
-      std::string(GAITLAB_SOURCE_DIR) + "/public/presets/quadruped-walk.json",
-      gaitlab::gait::Character::Quadruped, &walk);
+  const auto error = loadQuadrupedPreset("quadruped-walk.json", &walk);
   ASSERT_FALSE(error) << error->describe();
   const gaitlab::gait::GaitParams& p = walk.gait.primaryParams();
   for (const double phase : {0.0, 0.3}) {

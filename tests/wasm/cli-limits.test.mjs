@@ -101,3 +101,18 @@ test('Ctrl-C during optimize writes the best so far whole, through a rename', as
   assert.equal(gait.meta.interrupted, true);
   assert.deepEqual(fs.readdirSync(tmp).filter((f) => f.includes('.tmp-')), []);
 });
+
+test('walk pushes: a duration past 0.3 s and an unknown direction are refused with the option named', () => {
+  const long = run(['walk', '--seconds', '0.1', '--push-impulse', '10', '--push-duration', '0.5']);
+  assert.equal(long.status, 2, long.stderr);
+  assert.match(long.stderr, /--push-duration: 0\.5 is outside \[0\.0, 0\.3\]/);
+  const way = run(['walk', '--seconds', '0.1', '--push-impulse', '10', '--push-direction', 'up']);
+  assert.equal(way.status, 2, way.stderr);
+  assert.match(way.stderr, /--push-direction: 'up' is not lateral, forward, backward or any/);
+  const ok = run(['walk', '--seconds', '3', '--speed', '0', '--push-impulse', '10', '--push-every', '0.5',
+    '--push-duration', '0.3', '--push-direction', 'any', '--json']);
+  assert.equal(ok.status, 0, ok.stderr);
+  const r = JSON.parse(ok.stdout);
+  assert.equal(r.push_duration_s, 0.3);
+  assert.ok(r.pushes_applied >= 2, `${r.pushes_applied} pushes in 1 s of 0.5 s spacing`);
+});

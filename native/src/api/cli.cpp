@@ -59,7 +59,10 @@ const char* kWalkUsage =
     "                                of 2-3 cm every 0.5 m (drawn from --seed)\n"
     "  --push-impulse N_S            push at the leg frame (default 0: none)\n"
     "  --push-every S                seconds between pushes (default 4)\n"
-    "  --push-direction D            lateral (left or right at random, default), forward, backward\n"
+    "  --push-duration S             how long each push lasts, 0 to 0.3 (default 0: the whole\n"
+    "                                impulse in one step; 0.2 pushes as Yin et al. 2007 do)\n"
+    "  --push-direction D            lateral (left or right at random, default), forward, backward,\n"
+    "                                or any (each push one of those at random)\n"
     "  --speed-schedule T:V,...      goal speed V m/s at time T s, linear between, held after the\n"
     "                                last (replaces --speed; reports speed tracking)\n"
     "  --drift-window S              position drift over the last S seconds (default: second half)\n"
@@ -96,6 +99,7 @@ const char* kOptimizeUsage =
     "                                on the slope 0 climbs first, 3.14159 descends first)\n"
     "  --objective NAME=V,...        objective settings: wd wv wa wr fallPenalty warmup starts\n"
     "                                startImpulse startPhases turnRate pushImpulse pushEvery\n"
+    "                                pushDuration pushAnyWay\n"
     "  --json                        print a JSON summary on stdout (progress goes to stderr)\n"
     "  Ctrl-C stops after the current generation and still writes the best so far.\n";
 
@@ -182,7 +186,7 @@ int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--speed", "--turn", "--heading", "--start-push-forward",
              "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
-             "--push-direction", "--speed-schedule", "--drift-window", "--box-hits", "--start-phase"},
+             "--push-direction", "--push-duration", "--speed-schedule", "--drift-window", "--box-hits", "--start-phase"},
             {"--json", "--trace"});
   if (o.help) return printHelp(kWalkUsage);
   if (!o.error.empty()) return api::usageError("walk", o.error);
@@ -211,6 +215,7 @@ int walk(int argc, char** argv) {
       !o.number("--seconds", 0.01, 3600, 20.0, &w.seconds) ||
       !o.number("--push-impulse", 0, 10000, 0.0, &w.pushImpulse) ||
       !o.number("--push-every", 0.5, 3600, 4.0, &w.pushEvery) ||
+      !o.number("--push-duration", 0, 0.3, 0.0, &w.pushDuration) ||
       !o.integer("--seed", 0, kMaxSeed, 1, &seed) ||
       !o.number("--drift-window", 0, 3600, 0.0, &w.driftWindow) ||
       !o.number("--start-phase", 0, 1, -1.0, &w.startPhase))
@@ -225,7 +230,8 @@ int walk(int argc, char** argv) {
   if (direction == "lateral") w.pushDirection = sim::PushDirection::Lateral;
   else if (direction == "forward") w.pushDirection = sim::PushDirection::Forward;
   else if (direction == "backward") w.pushDirection = sim::PushDirection::Backward;
-  else return api::usageError("walk", "--push-direction: '" + direction + "' is not lateral, forward or backward");
+  else if (direction == "any") w.pushDirection = sim::PushDirection::Any;
+  else return api::usageError("walk", "--push-direction: '" + direction + "' is not lateral, forward, backward or any");
   if (o.values.count("--speed-schedule")) {
     // T:V pairs separated by commas, times increasing.
     std::stringstream list(o.values["--speed-schedule"]);
@@ -264,6 +270,7 @@ int walk(int argc, char** argv) {
       {"pushes_survived", r.pushesSurvived},
       {"push_impulse_n_s", w.pushImpulse},
       {"push_direction", direction},
+      {"push_duration_s", w.pushDuration},
       {"position_drift_m", r.positionDrift},
       {"flight_fraction", r.flightFraction},
       {"gait_changes", r.gaitChanges},

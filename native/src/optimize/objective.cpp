@@ -33,8 +33,12 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"startPhases", 0, 1, "1", "1: start states after the first also begin at their own gait phase, as a crowd starts", true},
         s.startPhases);
   visit({"turnRate", -3, 3, "rad/s", "goal turn rate"}, s.turnRate);
-  visit({"pushImpulse", 0, 1000, "N·s", "lateral pushes during an episode (0: none)"}, s.pushImpulse);
+  visit({"pushImpulse", 0, 1000, "N·s", "pushes at the leg frame during an episode (0: none)"}, s.pushImpulse);
   visit({"pushEvery", 0.5, 60, "s", "time between pushes, phase jittered"}, s.pushEvery);
+  visit({"pushDuration", 0, 0.3, "s", "how long each push lasts (0: in one step; Yin et al. 2007 push for 0.2 s)"},
+        s.pushDuration);
+  visit({"pushAnyWay", 0, 1, "1", "1: each push lateral, forward or backward at random; 0: lateral only", true},
+        s.pushAnyWay);
 }
 
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value) {
@@ -157,6 +161,8 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   w.seconds = settings.seconds;
   w.pushImpulse = settings.pushImpulse;
   w.pushEvery = settings.pushEvery;
+  w.pushDuration = settings.pushDuration;
+  w.pushDirection = settings.pushAnyWay > 0 ? sim::PushDirection::Any : sim::PushDirection::Lateral;
   w.seed = seed + 7919u * static_cast<uint32_t>(start);
   if (start > 0) {
     // A nudge in a direction drawn from the seed: the same start state for every candidate.

@@ -76,8 +76,11 @@ struct ObjectiveSettings {
   // not at the gait's own start; 0 (default): every start at the gait's own phase.
   double startPhases = 0.0;
   double turnRate = 0.0;         // goal turn rate, rad/s
-  double pushImpulse = 0.0;      // N·s lateral pushes during the episode (0 = none)
+  double pushImpulse = 0.0;      // N·s pushes at the leg frame during the episode (0 = none)
   double pushEvery = 2.0;        // s between pushes, phase jittered
+  double pushDuration = 0.0;     // s each push lasts (0: the whole impulse in one step)
+  // 1: each push goes lateral, forward or backward at random; 0 (default): lateral only.
+  double pushAnyWay = 0.0;
 };
 
 // The scalar settings as a schema-style table (name, bounds, default, unit, description), so

@@ -91,6 +91,9 @@ WalkResult runWalk(const WalkOptions& o) {
   double unwrapped = 0, lastHeading = startHeading, halfUnwrapped = 0;
   double nextPush = o.pushEvery > 0 && o.pushImpulse > 0 ? 2.0 : -1;
   double pushPending = -1;  // time of the last push still to be judged
+  const int pushSteps = std::max(1, static_cast<int>(std::lround(o.pushDuration / physics::kFixedStep)));
+  int pushStepsLeft = 0;       // steps of the current push still to come
+  Eigen::Vector3d pushDir = Eigen::Vector3d::Zero();
   TrialDraws draws(o.seed);
   const double controller0 = sim.controllerSeconds();
   if (o.startImpulseLeft != 0 || o.startImpulseForward != 0) {
@@ -109,15 +112,26 @@ WalkResult runWalk(const WalkOptions& o) {
       const physics::SegmentState s = rootState();
       const double h = gait::headingOf(s.orientation);
       const double side = draws.unit() < 0.5 ? -1.0 : 1.0;
-      const Eigen::Vector3d dir = o.pushDirection == PushDirection::Lateral  ? gait::headingLeft(h) * side
-                                  : o.pushDirection == PushDirection::Forward ? gait::headingForward(h)
-                                                                              : -gait::headingForward(h);
-      btRigidBody* b = sim.character(0).body(root);
-      b->applyCentralImpulse(btVector3(static_cast<btScalar>(dir.x() * o.pushImpulse), 0,
-                                       static_cast<btScalar>(dir.z() * o.pushImpulse)));
+      PushDirection way = o.pushDirection;
+      if (way == PushDirection::Any) {
+        const double u = draws.unit();
+        way = u < 1.0 / 3 ? PushDirection::Lateral : u < 2.0 / 3 ? PushDirection::Forward : PushDirection::Backward;
+      }
+      pushDir = way == PushDirection::Lateral  ? gait::headingLeft(h) * side
+                : way == PushDirection::Forward ? gait::headingForward(h)
+                                                : -gait::headingForward(h);
+      pushStepsLeft = pushSteps;
       ++r.pushesApplied;
       pushPending = t;
       nextPush = t + o.pushEvery * (0.75 + 0.5 * draws.unit());  // random phase of the gait
+    }
+    if (pushStepsLeft > 0) {
+      // The push's share of this step, as an impulse: Bullet clears applied forces after each
+      // of the world's sub-steps, so a force would act on the first only.
+      const double share = o.pushImpulse / pushSteps;
+      sim.character(0).body(root)->applyCentralImpulse(
+          btVector3(static_cast<btScalar>(pushDir.x() * share), 0, static_cast<btScalar>(pushDir.z() * share)));
+      --pushStepsLeft;
     }
     sim.step(1);
     const physics::SegmentState s = rootState();

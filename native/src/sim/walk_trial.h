@@ -14,8 +14,9 @@
 
 namespace gaitlab::sim {
 
-// Which way the pushes go, in the heading frame at the moment of the push.
-enum class PushDirection { Lateral, Forward, Backward };
+// Which way the pushes go, in the heading frame at the moment of the push. Any: each push one of
+// lateral, forward and backward at random (a third each).
+enum class PushDirection { Lateral, Forward, Backward, Any };
 
 struct WalkOptions {
   Character character = Character::Biped;
@@ -27,6 +28,11 @@ struct WalkOptions {
   double pushImpulse = 0.0;  // N·s, at the leg frame; 0 = no pushes
   double pushEvery = 0.0;    // s between pushes (the first after 2 s); phase jittered by the seed
   PushDirection pushDirection = PushDirection::Lateral;  // lateral: left or right at random
+  // How long each push lasts: 0 gives the whole impulse in one step (a blow); longer spreads it
+  // as a constant force over that time, as the literature pushes (Yin et al. 2007: 350 N held
+  // for 0.2 s). Rounded to whole steps; at most 0.3 s, shorter than the least time between pushes
+  // (0.75 of pushEvery ≥ 0.5 s), so pushes never overlap.
+  double pushDuration = 0.0;
   // A goal-speed schedule (the ramp trial): (time s, speed m/s) points, the goal linear between
   // them and held after the last; empty = `speed` throughout. Times must increase.
   std::vector<std::pair<double, double>> speedSchedule;

@@ -21,6 +21,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"wa", 0, 1000, "1", "w_h: weight of leg-frame acceleration f_a (eq. 3.10)"}, s.wa);
   visit({"wr", 0, 1000, "1/rad²", "w_r: weight of leg-frame rotation deviation f_r (eq. 3.10)"}, s.wr);
   visit({"wt", 0, 1000, "1", "w_t: weight of footfall timing deviation f_t, duty factors measured against configured (ours)"}, s.wt);
+  visit({"wf", 0, 1000, "1", "w_f: weight of flight f_f, the share of time with no foot on the ground: a walk has none (ours)"}, s.wf);
   visit({"fallPenalty", 0, 1e6, "1", "added for a fall, scaled by 1 + the share of the episode left"},
         s.fallPenalty);
   visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
@@ -127,7 +128,7 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
   lastTime_ = time;
 }
 
-ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft) const {
+ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, double ff) const {
   ObjectiveTerms t;
   const double goalTravel = goalSpeed_ * measuredTime_;
   const double travel = (travel_ - goalTravel) / std::max(std::abs(goalTravel), 1.0);
@@ -137,6 +138,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft) 
   t.fa = accelSamples_ ? accelSum_ / accelSamples_ : 0.0;
   t.fr = frameSamples_ ? rotationSum_ / frameSamples_ : 0.0;
   t.ft = ft;
+  t.ff = ff;
   t.fell = fell;
   t.seconds = fell ? fallTime : lastTime_;
   if (fell) {
@@ -144,7 +146,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft) 
     t.fall = settings_.fallPenalty * (1.0 + left);
   }
   t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr +
-            settings_.wt * t.ft + t.fall;
+            settings_.wt * t.ft + settings_.wf * t.ff + t.fall;
   return t;
 }
 
@@ -188,7 +190,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
     recorder.add(s.time(), frames.data(), static_cast<int>(frames.size()));
   };
   const sim::WalkResult r = sim::runWalk(w);
-  return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig));
+  return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig), r.flightFraction);
 }
 
 double timingDeviation(const std::vector<double>& measured, const std::vector<double>& configured) {
@@ -212,6 +214,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
         mean.fa += t.fa;
         mean.fr += t.fr;
         mean.ft += t.ft;
+        mean.ff += t.ff;
         mean.fall += t.fall;
         mean.total += t.total;
         mean.seconds += t.seconds;
@@ -221,7 +224,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     }
   }
   if (episodes) {
-    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.fall, &mean.total}) *v /= episodes;
+    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fall, &mean.total}) *v /= episodes;
   }
   return mean;
 }

@@ -63,6 +63,7 @@ std::string groundText(const Ground& g);  // "slope@3.14159", "flat" for heading
 struct ObjectiveSettings {
   double wd = 1.0, wv = 1.0, wa = 1.0, wr = 1.0;  // w_d, w_v, w_h, w_r of eq. 3.10
   double wt = 0.0;                                 // w_t of f_t (footfall timing, ours)
+  double wf = 0.0;                                 // w_f of f_f (flight: no foot down, ours)
   double fallPenalty = 100.0;
   double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
   double warmup = 1.0;             // s before travel and velocity are measured
@@ -104,8 +105,9 @@ std::string settingsJson(const ObjectiveSettings& s);  // {"wd":1,...,"speeds":[
 struct ObjectiveTerms {
   double fd = 0, fv = 0, fa = 0, fr = 0;
   double ft = 0;          // footfall timing deviation (duty factors)
+  double ff = 0;          // flight: the share of the time with no foot on the ground
   double fall = 0;        // the fall penalty, 0 if it did not fall
-  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + fall
+  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + fall
   bool fell = false;
   double seconds = 0;     // simulated
 };
@@ -131,7 +133,7 @@ class ObjectiveRecorder {
 
   // Terms over what was recorded; `fell` at `fallTime` adds the fall penalty. `ft`: the
   // episode's footfall timing deviation (timingDeviation, from the walk's duty factors).
-  ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0) const;
+  ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0, double ff = 0.0) const;
 
   double goalHeading(double time) const { return startHeading_ + settings_.turnRate * time; }
 

@@ -185,6 +185,25 @@ TEST(OptimizeObjective, VelocityIsMeasuredInTheTurningGoalHeadingFrame) {
   EXPECT_NEAR(t.fa, 0.25 / (9.81 * 9.81), 1e-6);
 }
 
+// The flight term f_f (ours) is the walk's share of time with no foot down, weighted by w_f into
+// the total: a search for a walk can ask for double support, one for a run leaves w_f at 0.
+TEST(OptimizeObjective, FlightCountsInTheTotalByItsWeight) {
+  ObjectiveSettings s = settings();
+  const auto total = [&](double wf, double flight) {
+    s.wf = wf;
+    ObjectiveRecorder r(s, 1.0, 0.0, kDt);
+    for (int k = 1; k <= 360; ++k) {
+      const LegFrameSample f = upright({0, kStanding, k * kDt}, {0, 0, 1.0});
+      r.add(k * kDt, &f, 1);
+    }
+    const ObjectiveTerms t = r.finish(false, 3.0, 0.0, flight);
+    EXPECT_EQ(t.ff, flight);
+    return t.total;
+  };
+  EXPECT_NEAR(total(20, 0.1) - total(20, 0.0), 2.0, 1e-9);
+  EXPECT_NEAR(total(0, 0.1), total(0, 0.0), 1e-12);
+}
+
 TEST(OptimizeObjective, PostureDeviationIsRelativeHeightSquared) {
   const auto t = record(settings(), 1.0, [](double t) {
     return upright({0, 0.9, t}, {0, 0, 1.0}, 0.9);

@@ -99,7 +99,7 @@ const char* kOptimizeUsage =
     "                                on the slope 0 climbs first, 3.14159 descends first)\n"
     "  --objective NAME=V,...        objective settings: wd wv wa wr fallPenalty warmup starts\n"
     "                                startImpulse startPhases turnRate pushImpulse pushEvery\n"
-    "                                pushDuration pushAnyWay\n"
+    "                                pushDuration pushAnyWay ramp\n"
     "  --json                        print a JSON summary on stdout (progress goes to stderr)\n"
     "  Ctrl-C stops after the current generation and still writes the best so far.\n";
 

@@ -40,6 +40,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
         s.pushDuration);
   visit({"pushAnyWay", 0, 1, "1", "1: each push lateral, forward or backward at random; 0: lateral only", true},
         s.pushAnyWay);
+  visit({"ramp", 0, 1, "1", "1: also an episode per ground and start whose goal ramps 0 → the top speed → 0", true}, s.ramp);
 }
 
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value) {
@@ -119,18 +120,19 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
   if (time > settings_.warmup + 1e-9) {
     // Root leg frame's horizontal velocity in the goal heading frame (x left, z forward).
     const Eigen::Vector3d v = gait::worldToHeading(heading, frames[0].velocity);
-    const double forwardError = v.z() - goalSpeed_;
+    const double goal = schedule_.empty() ? goalSpeed_ : sim::scheduleAt(schedule_, time);
+    const double forwardError = v.z() - goal;
+    goalTravel_ += goal * dt_;
     velocitySum_ += forwardError * forwardError + v.x() * v.x();
     ++velocityCount_;
     travel_ += v.z() * dt_;
-    measuredTime_ += dt_;
-  }
+      }
   lastTime_ = time;
 }
 
 ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, double ff) const {
   ObjectiveTerms t;
-  const double goalTravel = goalSpeed_ * measuredTime_;
+  const double goalTravel = goalTravel_;
   const double travel = (travel_ - goalTravel) / std::max(std::abs(goalTravel), 1.0);
   const double posture = frameSamples_ ? postureSum_ / frameSamples_ : 0.0;
   t.fd = travel * travel + posture;
@@ -152,13 +154,14 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
 
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
-                          const Ground& ground) {
+                          const Ground& ground, bool ramp) {
   sim::WalkOptions w;
   w.terrain = ground.terrain;
   w.heading = ground.heading;
   w.character = c;
   w.gait = &gait;
   w.speed = speed;
+  if (ramp) w.speedSchedule = {{0.0, 0.0}, {0.5 * settings.seconds, speed}, {settings.seconds, 0.0}};
   w.turnRate = settings.turnRate;
   w.seconds = settings.seconds;
   w.pushImpulse = settings.pushImpulse;
@@ -175,6 +178,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
     if (settings.startPhases > 0) w.startPhase = std::fmod(start * 0.6180339887498949, 1.0);
   }
   ObjectiveRecorder recorder(settings, speed, w.heading, physics::kFixedStep);
+  if (ramp) recorder.setGoalSchedule(w.speedSchedule);
   std::vector<LegFrameSample> frames;
   w.observe = [&](const sim::Simulation& s) {
     const physics::Character& ch = s.character(0);
@@ -206,9 +210,18 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   ObjectiveTerms mean;
   int episodes = 0;
   for (const Ground& ground : settings.grounds) {
-    for (double speed : settings.speeds) {
+    // The goal speeds, then (with `ramp`) the ramp up to the fastest of them.
+    struct Goal {
+      double speed;
+      bool ramp;
+    };
+    std::vector<Goal> goals;
+    for (double speed : settings.speeds) goals.push_back({speed, false});
+    if (settings.ramp > 0 && !settings.speeds.empty())
+      goals.push_back({*std::max_element(settings.speeds.begin(), settings.speeds.end()), true});
+    for (const Goal& goal : goals) {
       for (int start = 0; start < settings.starts; ++start) {
-        const ObjectiveTerms t = runEpisode(c, gait, settings, speed, start, seed, ground);
+        const ObjectiveTerms t = runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp);
         mean.fd += t.fd;
         mean.fv += t.fv;
         mean.fa += t.fa;

@@ -82,6 +82,10 @@ struct ObjectiveSettings {
   double pushDuration = 0.0;     // s each push lasts (0: the whole impulse in one step)
   // 1: each push goes lateral, forward or backward at random; 0 (default): lateral only.
   double pushAnyWay = 0.0;
+  // 1: one more episode per ground and start state, whose goal ramps from 0 up to the largest of
+  // `speeds` and back to 0 over the episode (Wang et al. 2010 optimise over speed changes); the
+  // velocity term then follows the ramping goal.
+  double ramp = 0.0;
 };
 
 // The scalar settings as a schema-style table (name, bounds, default, unit, description), so
@@ -136,11 +140,15 @@ class ObjectiveRecorder {
   ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0, double ff = 0.0) const;
 
   double goalHeading(double time) const { return startHeading_ + settings_.turnRate * time; }
+  // A goal speed that changes: (time s, speed m/s) points (sim::scheduleAt), instead of the
+  // constructor's constant goalSpeed.
+  void setGoalSchedule(std::vector<std::pair<double, double>> schedule) { schedule_ = std::move(schedule); }
 
  private:
   ObjectiveSettings settings_;
   double goalSpeed_, startHeading_, dt_;
-  double travel_ = 0, measuredTime_ = 0;    // along the goal heading, after the warm-up
+  std::vector<std::pair<double, double>> schedule_;  // empty: goalSpeed_ throughout
+  double travel_ = 0, goalTravel_ = 0;      // along the goal heading, after the warm-up: walked, asked
   double velocitySum_ = 0;  int velocityCount_ = 0;
   double postureSum_ = 0, accelSum_ = 0, rotationSum_ = 0;
   int frameSamples_ = 0, accelSamples_ = 0;
@@ -152,11 +160,12 @@ class ObjectiveRecorder {
 double timingDeviation(const std::vector<double>& measured, const std::vector<double>& configured);
 
 // One episode: the character walks with `params` on `ground` from start state `start` at goal
-// `speed` (sim::runWalk with the recorder observing every step). `seed` fixes the start nudge's
+// `speed` (sim::runWalk with the recorder observing every step); with `ramp`, the goal ramps
+// from 0 up to `speed` at half the episode and back to 0 at its end. `seed` fixes the start nudge's
 // direction, the pushes' phases and the bumps.
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
-                          const Ground& ground = Ground{});
+                          const Ground& ground = Ground{}, bool ramp = false);
 
 // The objective of a parameter set: the mean over every ground × speed × start state. Deterministic:
 // the same inputs give the same bits (each episode is its own single-threaded simulation).

@@ -30,8 +30,10 @@ constexpr int kTrackingLagSteps = 20;
 }  // namespace
 
 double goalSpeedAt(const WalkOptions& o, double t) {
-  const auto& q = o.speedSchedule;
-  if (q.empty()) return o.speed;
+  return o.speedSchedule.empty() ? o.speed : scheduleAt(o.speedSchedule, t);
+}
+
+double scheduleAt(const std::vector<std::pair<double, double>>& q, double t) {
   if (t <= q.front().first) return q.front().second;
   for (size_t i = 1; i < q.size(); ++i) {
     if (t <= q[i].first) {

@@ -110,6 +110,9 @@ class TrialDraws {
 
 // The goal speed of `o` at time t (its schedule, or its constant speed).
 double goalSpeedAt(const WalkOptions& o, double t);
+// A (time s, speed m/s) schedule at time t: linear between its points, held before the first
+// and after the last. Not empty.
+double scheduleAt(const std::vector<std::pair<double, double>>& schedule, double t);
 
 // Fall criterion (controller issue): the leg frame below half its standing height above the
 // ground, or tilted more than 60° from upright.

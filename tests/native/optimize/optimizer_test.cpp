@@ -204,6 +204,30 @@ TEST(OptimizeObjective, FlightCountsInTheTotalByItsWeight) {
   EXPECT_NEAR(total(0, 0.1), total(0, 0.0), 1e-12);
 }
 
+// A ramp episode's goal changes with time (setGoalSchedule): a walker that follows the ramp
+// exactly has no velocity or travel deviation; one that holds the top speed throughout does.
+TEST(OptimizeObjective, ARampingGoalIsFollowedInTime) {
+  const std::vector<std::pair<double, double>> ramp = {{0.0, 0.0}, {1.5, 1.2}, {3.0, 0.0}};
+  const auto walk = [&](bool follows) {
+    ObjectiveRecorder r(settings(), 1.2, 0.0, kDt);
+    r.setGoalSchedule(ramp);
+    double z = 0;
+    for (int k = 1; k <= 360; ++k) {
+      const double t = k * kDt;
+      const double v = follows ? gaitlab::sim::scheduleAt(ramp, t) : 1.2;
+      z += v * kDt;
+      const LegFrameSample f = upright({0, kStanding, z}, {0, 0, v});
+      r.add(t, &f, 1);
+    }
+    return r.finish(false, 3.0);
+  };
+  const ObjectiveTerms follows = walk(true), holds = walk(false);
+  EXPECT_NEAR(follows.fv, 0.0, 1e-12);
+  EXPECT_NEAR(follows.fd, 0.0, 1e-9);
+  EXPECT_GT(holds.fv, 0.1);
+  EXPECT_GT(holds.fd, 0.1);
+}
+
 TEST(OptimizeObjective, PostureDeviationIsRelativeHeightSquared) {
   const auto t = record(settings(), 1.0, [](double t) {
     return upright({0, 0.9, t}, {0, 0, 1.0}, 0.9);

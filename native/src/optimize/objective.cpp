@@ -126,14 +126,13 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
     velocitySum_ += forwardError * forwardError + v.x() * v.x();
     ++velocityCount_;
     travel_ += v.z() * dt_;
-      }
+  }
   lastTime_ = time;
 }
 
 ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, double ff) const {
   ObjectiveTerms t;
-  const double goalTravel = goalTravel_;
-  const double travel = (travel_ - goalTravel) / std::max(std::abs(goalTravel), 1.0);
+  const double travel = (travel_ - goalTravel_) / std::max(std::abs(goalTravel_), 1.0);
   const double posture = frameSamples_ ? postureSum_ / frameSamples_ : 0.0;
   t.fd = travel * travel + posture;
   t.fv = velocityCount_ ? velocitySum_ / velocityCount_ : 0.0;
@@ -209,16 +208,16 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
                         const ObjectiveSettings& settings, uint32_t seed) {
   ObjectiveTerms mean;
   int episodes = 0;
+  // The goal speeds, then (with `ramp`) the ramp up to the fastest of them.
+  struct Goal {
+    double speed;
+    bool ramp;
+  };
+  std::vector<Goal> goals;
+  for (double speed : settings.speeds) goals.push_back({speed, false});
+  if (settings.ramp > 0 && !settings.speeds.empty())
+    goals.push_back({*std::max_element(settings.speeds.begin(), settings.speeds.end()), true});
   for (const Ground& ground : settings.grounds) {
-    // The goal speeds, then (with `ramp`) the ramp up to the fastest of them.
-    struct Goal {
-      double speed;
-      bool ramp;
-    };
-    std::vector<Goal> goals;
-    for (double speed : settings.speeds) goals.push_back({speed, false});
-    if (settings.ramp > 0 && !settings.speeds.empty())
-      goals.push_back({*std::max_element(settings.speeds.begin(), settings.speeds.end()), true});
     for (const Goal& goal : goals) {
       for (int start = 0; start < settings.starts; ++start) {
         const ObjectiveTerms t = runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "gait/heading.h"
+#include "physics/convert.h"
 
 namespace gaitlab::sim {
 
@@ -94,8 +95,8 @@ WalkResult runWalk(const WalkOptions& o) {
   double nextPush = o.pushEvery > 0 && o.pushImpulse > 0 ? 2.0 : -1;
   double pushPending = -1;  // time of the last push still to be judged
   const int pushSteps = std::max(1, static_cast<int>(std::lround(o.pushDuration / physics::kFixedStep)));
-  int pushStepsLeft = 0;       // steps of the current push still to come
-  Eigen::Vector3d pushDir = Eigen::Vector3d::Zero();
+  int pushStepsLeft = 0;   // steps of the current push still to come
+  btVector3 pushPerStep;   // the current push's impulse for each of its steps
   TrialDraws draws(o.seed);
   const double controller0 = sim.controllerSeconds();
   if (o.startImpulseLeft != 0 || o.startImpulseForward != 0) {
@@ -119,20 +120,19 @@ WalkResult runWalk(const WalkOptions& o) {
         const double u = draws.unit();
         way = u < 1.0 / 3 ? PushDirection::Lateral : u < 2.0 / 3 ? PushDirection::Forward : PushDirection::Backward;
       }
-      pushDir = way == PushDirection::Lateral  ? gait::headingLeft(h) * side
-                : way == PushDirection::Forward ? gait::headingForward(h)
-                                                : -gait::headingForward(h);
+      const Eigen::Vector3d dir = way == PushDirection::Lateral  ? gait::headingLeft(h) * side
+                                  : way == PushDirection::Forward ? gait::headingForward(h)
+                                                                  : -gait::headingForward(h);
+      // Spread over the push's steps as impulses: Bullet clears applied forces after each of the
+      // world's sub-steps, so a force would act on the first only.
+      pushPerStep = physics::toBt(dir * (o.pushImpulse / pushSteps));
       pushStepsLeft = pushSteps;
       ++r.pushesApplied;
       pushPending = t;
       nextPush = t + o.pushEvery * (0.75 + 0.5 * draws.unit());  // random phase of the gait
     }
     if (pushStepsLeft > 0) {
-      // The push's share of this step, as an impulse: Bullet clears applied forces after each
-      // of the world's sub-steps, so a force would act on the first only.
-      const double share = o.pushImpulse / pushSteps;
-      sim.character(0).body(root)->applyCentralImpulse(
-          btVector3(static_cast<btScalar>(pushDir.x() * share), 0, static_cast<btScalar>(pushDir.z() * share)));
+      sim.character(0).body(root)->applyCentralImpulse(pushPerStep);
       --pushStepsLeft;
     }
     sim.step(1);

@@ -320,18 +320,27 @@ TEST(SpeedRange, TheBipedRunsAndTheQuadrupedTrotsAtTheTopOfTheirRange) {
   EXPECT_GT(trot.meanSpeed, 1.5);  // measured 1.66 over the second 10 s (1.78 over 60 s)
 }
 
+namespace {
+// The biped for 14 s at goal `speed`, pushed every 2.5 s (seed 7), as the push ladder pushes.
+gaitlab::sim::WalkResult pushedBiped(gaitlab::sim::PushDirection direction, double speed, double impulse,
+                                     double duration) {
+  WalkOptions o;
+  o.character = Character::Biped;
+  o.speed = speed;
+  o.pushImpulse = impulse;
+  o.pushDuration = duration;
+  o.pushEvery = 2.5;
+  o.pushDirection = direction;
+  o.seed = 7;
+  o.seconds = 14;
+  return runWalk(o);
+}
+}  // namespace
+
 // Standing (goal 0), pushed forwards and backwards at 20 N·s: it steps to recover every time.
 TEST(SpeedRange, TheBipedRecoversFromPushesAtGoalZero) {
   for (const auto direction : {gaitlab::sim::PushDirection::Forward, gaitlab::sim::PushDirection::Backward}) {
-    WalkOptions o;
-    o.character = Character::Biped;
-    o.speed = 0.0;
-    o.pushImpulse = 20;
-    o.pushEvery = 2.5;
-    o.pushDirection = direction;
-    o.seed = 7;
-    o.seconds = 14;
-    const auto r = runWalk(o);
+    const auto r = pushedBiped(direction, 0.0, 20, 0.0);
     EXPECT_FALSE(r.fell) << "fell after " << r.fallTime << " s";
     EXPECT_EQ(r.pushesSurvived, r.pushesApplied);
     EXPECT_GE(r.pushesApplied, 4);
@@ -345,16 +354,7 @@ TEST(SpeedRange, TheBipedTakesSixtyNewtonSecondPushesFromEverySide) {
   using gaitlab::sim::PushDirection;
   for (const auto direction : {PushDirection::Lateral, PushDirection::Forward, PushDirection::Backward}) {
     for (const double speed : {0.5, 0.0}) {
-      WalkOptions o;
-      o.character = Character::Biped;
-      o.speed = speed;
-      o.pushImpulse = 60;
-      o.pushDuration = 0.2;
-      o.pushEvery = 2.5;
-      o.pushDirection = direction;
-      o.seed = 7;
-      o.seconds = 14;
-      const auto r = runWalk(o);
+      const auto r = pushedBiped(direction, speed, 60, 0.2);
       EXPECT_FALSE(r.fell) << "direction " << static_cast<int>(direction) << " at " << speed << " m/s: fell after " << r.fallTime << " s";
       EXPECT_GE(r.pushesSurvived, 4);  // pushes 2 s behind them and still up
     }

@@ -3,7 +3,7 @@
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
-//                          [--only criteria,sweep,ramp,pushes,boxes,starts,transitions] [--jobs 2]
+//                          [--only criteria,sweep,ramp,pushes,boxes,starts,transitions,switches] [--jobs 2]
 //                          [--step 0.1]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
@@ -37,7 +37,12 @@
 //     of the stride), 8 changes per run, 20 runs per pair of speeds, for pairs across each change
 //     of gait (the quadruped's walk and trot, gait/gait_transition.h; the biped's walk and run,
 //     keys of one footfall pattern that blend) and from standing: how many runs fall, and how many
-//     changes of footfall pattern the runs made.
+//     changes of footfall pattern the runs made;
+//   - switches (the quadruped): a gait pinned in mid-stride, as the demo's gait menu pins one
+//     (`gaitlab walk --gait-schedule`): from each of the walk, trot and pace files to each other
+//     at the demo's quadruped speed (0.4 m/s), 50 switches per pair at times spread over 1 s (more
+//     than a stride of each gait, so at every phase): how many fall in the 6 s after. With
+//     --params FILE, the file stands in for the trot.
 // The walking criteria:
 //   - 60 s on flat ground at two goal speeds, one twice the other, without a fall;
 //   - mean speed within ±15 % of the goal; heading drift under 10° walking straight;
@@ -64,7 +69,7 @@ const opt = (name, fallback) => {
 const seconds = Number(opt('seconds', '60'));
 const jobs = Math.max(1, Number(opt('jobs', '2')));
 const sweepStep = Number(opt('step', '0.1'));
-const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes', 'starts', 'transitions'];
+const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes', 'starts', 'transitions', 'switches'];
 const only = opt('only', SECTIONS.join(',')).split(',');
 for (const s of only) {
   if (!SECTIONS.includes(s)) {
@@ -109,8 +114,8 @@ function walk(character, extra, wasm = false) {
 // The same as walk(), as a promise, at most `jobs` at once.
 let running = 0;
 const waiting = [];
-function walkAsync(character, extra) {
-  const argv = ['walk', '--character', character, '--json', ...(paramsFile ? ['--params', paramsFile] : []), ...extra.map(String)];
+function walkAsync(character, extra, params = paramsFile) {
+  const argv = ['walk', '--character', character, '--json', ...(params ? ['--params', params] : []), ...extra.map(String)];
   return new Promise((resolve, reject) => {
     const start = () => {
       running++;
@@ -384,6 +389,30 @@ async function measureTransitions(character) {
   return { ...stamp, rows };
 }
 
+// A gait pinned in mid-stride: the quadruped's gait files, each to each other, at the demo's
+// quadruped speed; the switch times spread evenly over SWITCH_SPREAD seconds after SWITCH_AT.
+const SWITCH_GAITS = { walk: 'quadruped-walk.json', trot: 'quadruped-trot.json', pace: 'quadruped-pace.json' };
+const SWITCH_SPEED = 0.4, SWITCH_RUNS = 50, SWITCH_AT = 3, SWITCH_SPREAD = 1, SWITCH_AFTER = 6;
+async function measureSwitches(character) {
+  if (character !== 'quadruped') return null;  // the biped has one gait file
+  const file = (name) => (name === 'trot' && paramsFile ? paramsFile : path.join(root, 'public/presets', SWITCH_GAITS[name]));
+  const names = Object.keys(SWITCH_GAITS);
+  const pairs = names.flatMap((from) => names.filter((to) => to !== from).map((to) => [from, to]));
+  const rows = await Promise.all(pairs.map(async ([from, to]) => {
+    process.stderr.write(`${character}: ${SWITCH_RUNS} switches from the ${from} to the ${to}\n`);
+    const runs = await Promise.all(Array.from({ length: SWITCH_RUNS }, (_, k) => {
+      const at = SWITCH_AT + (SWITCH_SPREAD * k) / SWITCH_RUNS;
+      return walkAsync(character, ['--speed', SWITCH_SPEED, '--seconds', at + SWITCH_AFTER, '--gait-schedule', `${at}:${file(to)}`], file(from))
+        .then((r) => ({ at, fell: r.fell, fall_time_s: r.fall_time_s }));
+    }));
+    const before = runs.filter((x) => x.fell && x.fall_time_s <= x.at);
+    const after = runs.filter((x) => x.fell && x.fall_time_s > x.at);
+    return { from, to, runs: runs.length, fell_before: before.length, falls: after.length,
+      fell_after_s: after.map((x) => x.fall_time_s - x.at) };
+  }));
+  return { ...stamp, speed: SWITCH_SPEED, seconds_after: SWITCH_AFTER, rows };
+}
+
 for (const character of characters) {
   const r = (report.characters[character] ??= {});
   const measured = await Promise.all([
@@ -394,6 +423,7 @@ for (const character of characters) {
     only.includes('boxes') ? measureBoxes(character) : null,
     only.includes('starts') ? measureStarts(character) : null,
     only.includes('transitions') ? measureTransitions(character) : null,
+    only.includes('switches') ? measureSwitches(character) : null,
   ]);
   SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
   // Results of the previous layout (criteria at the top level) are not carried on.
@@ -482,6 +512,16 @@ for (const [character, r] of Object.entries(report.characters)) {
     for (const row of tr.rows) {
       lines.push(`| ${row.speeds.join(' ↔ ')} | ${row.falls} of ${row.runs} | ${row.gait_changes} | ` +
         `${row.fall_times_s.map((t) => t.toFixed(1)).join(', ') || '–'} |`);
+    }
+    lines.push('');
+  }
+  const sx = r.switches;
+  if (sx) {
+    lines.push(`### A gait pinned in mid-stride (${SWITCH_RUNS} switches per pair at ${sx.speed} m/s, at times spread over ${SWITCH_SPREAD} s; ${sx.measured.slice(0, 10)}, ${sx.commit})`, '',
+      `| from | to | fell within ${sx.seconds_after} s of the switch | fell at s after it |`, '|---|---|---|---|');
+    for (const row of sx.rows) {
+      lines.push(`| ${row.from} | ${row.to} | ${row.falls} of ${row.runs - row.fell_before}${row.fell_before ? ` (${row.fell_before} fell before it)` : ''} | ` +
+        `${row.fell_after_s.map((t) => t.toFixed(1)).join(', ') || '–'} |`);
     }
     lines.push('');
   }

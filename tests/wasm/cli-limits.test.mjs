@@ -43,6 +43,12 @@ test('every subcommand has --help, integers are integers, and seeds share one ra
     assert.equal(r.status, 0, `${command} --help: ${r.stderr}`);
     assert.match(r.stdout, new RegExp(`^usage: gaitlab ${command}`));
   }
+  // The optimiser's help lists every objective setting it accepts, each with its range.
+  const help = run(['optimize', '--help']).stdout;
+  for (const name of ['wd', 'wv', 'wa', 'wr', 'wt', 'wf', 'fallPenalty', 'seconds', 'warmup', 'starts', 'startImpulse',
+    'startPhases', 'turnRate', 'pushImpulse', 'pushEvery', 'pushDuration', 'pushAnyWay', 'ramp']) {
+    assert.match(help, new RegExp(`^  ${name} +\\S+ to \\S+`, 'm'), `optimize --help lists ${name}`);
+  }
   for (const [args, name] of [
     [['walk', '--seed', '1.5'], 'walk'],
     [['optimize', '--out', path.join(tmp, 'x.json'), '--generations', '2.5'], 'optimize'],

@@ -65,6 +65,8 @@ const char* kWalkUsage =
     "                                or any (each push one of those at random)\n"
     "  --speed-schedule T:V,...      goal speed V m/s at time T s, linear between, held after the\n"
     "                                last (replaces --speed; reports speed tracking)\n"
+    "  --gait-schedule T:FILE,...   take up the gait file FILE at time T s, in mid-stride (as\n"
+    "                                the demo's gait menu does); times increasing, at most 16\n"
     "  --drift-window S              position drift over the last S seconds (default: second half)\n"
     "  --box-hits N                  instead of one walk, the box-hit trial: boxes thrown as the\n"
     "                                demo throws them (0.24 m, 8.3 kg, 14 m/s or faster) at random\n"
@@ -97,9 +99,7 @@ const char* kOptimizeUsage =
     "  --grounds G,...               grounds each candidate walks on (default flat): flat, slope\n"
     "                                or bumps, each optionally @HEADING (rad it starts facing;\n"
     "                                on the slope 0 climbs first, 3.14159 descends first)\n"
-    "  --objective NAME=V,...        objective settings: wd wv wa wr fallPenalty warmup starts\n"
-    "                                startImpulse startPhases turnRate pushImpulse pushEvery\n"
-    "                                pushDuration pushAnyWay ramp\n"
+    "  --objective NAME=V,...        objective settings (listed below)\n"
     "  --json                        print a JSON summary on stdout (progress goes to stderr)\n"
     "  Ctrl-C stops after the current generation and still writes the best so far.\n";
 
@@ -186,7 +186,8 @@ int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--speed", "--turn", "--heading", "--start-push-forward",
              "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
-             "--push-direction", "--push-duration", "--speed-schedule", "--drift-window", "--box-hits", "--start-phase"},
+             "--push-direction", "--push-duration", "--speed-schedule", "--gait-schedule", "--drift-window", "--box-hits",
+             "--start-phase"},
             {"--json", "--trace"});
   if (o.help) return printHelp(kWalkUsage);
   if (!o.error.empty()) return api::usageError("walk", o.error);
@@ -247,6 +248,32 @@ int walk(int argc, char** argv) {
     }
     if (w.speedSchedule.empty()) return api::usageError("walk", "--speed-schedule: no T:V pairs");
   }
+  // Gait files to take up in mid-walk: T:FILE pairs separated by commas, times increasing, each
+  // file for the walking character (its own or the one --character or --params chose).
+  std::vector<gait::GaitFile> scheduled;
+  if (o.values.count("--gait-schedule")) {
+    constexpr size_t kMaxScheduledGaits = 16;
+    std::vector<double> times;
+    std::vector<std::string> paths;
+    std::stringstream list(o.values["--gait-schedule"]);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      char* end = nullptr;
+      const double t = std::strtod(item.c_str(), &end);
+      if (end == item.c_str() || *end != ':' || end[1] == '\0' || !std::isfinite(t) || t < 0 ||
+          (!times.empty() && t <= times.back()))
+        return api::usageError("walk", "--gait-schedule: '" + item + "' is not T:FILE with T >= 0 and increasing");
+      times.push_back(t);
+      paths.emplace_back(end + 1);
+    }
+    if (times.empty()) return api::usageError("walk", "--gait-schedule: no T:FILE pairs");
+    if (times.size() > kMaxScheduledGaits)
+      return api::usageError("walk", "--gait-schedule: more than " + std::to_string(kMaxScheduledGaits) + " gaits");
+    scheduled.resize(paths.size());
+    for (size_t i = 0; i < paths.size(); ++i)
+      if (const int status = loadParamsOption(paths[i], c, &scheduled[i])) return status;
+    for (size_t i = 0; i < paths.size(); ++i) w.gaitSchedule.emplace_back(times[i], &scheduled[i].gait);
+  }
   w.trace = o.flags.count("--trace") > 0;
 
   const sim::WalkResult r = sim::runWalk(w);
@@ -282,6 +309,14 @@ int walk(int argc, char** argv) {
     out["tracking"] = {{"samples", r.trackingSamples}, {"within_10pct", r.trackingWithin},
                        {"within_10pct_lag_1s", r.trackingWithinAtFullLag},
                        {"worst_relative_error", r.trackingWorst}};
+  }
+  if (!w.gaitSchedule.empty()) {
+    json list = json::array();
+    std::stringstream items(o.values["--gait-schedule"]);
+    std::string item;
+    for (size_t i = 0; std::getline(items, item, ','); ++i)
+      list.push_back({{"time_s", w.gaitSchedule[i].first}, {"file", item.substr(item.find(':') + 1)}});
+    out["gait_schedule"] = list;
   }
   if (w.trace) out["trace"] = r.trace;
   if (o.flags.count("--json")) {
@@ -371,7 +406,18 @@ int optimizeCommand(int argc, char** argv) {
             {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
              "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective", "--key"},
             {"--json"});
-  if (o.help) return printHelp(kOptimizeUsage);
+  if (o.help) {
+    // The settings come from the table that parses them, so the help cannot leave one out.
+    std::fputs(kOptimizeUsage, stdout);
+    std::fputs("\nObjective settings (--objective NAME=V): range, default, meaning\n", stdout);
+    optimize::ObjectiveSettings defaults;
+    optimize::forEachSetting(defaults, [](const optimize::SettingSpec& spec, double& value) {
+      const bool unitless = std::strcmp(spec.unit, "1") == 0;
+      std::printf("  %-13s %g to %g%s%s, default %g: %s\n", spec.name, spec.min, spec.max, unitless ? "" : " ",
+                  unitless ? "" : spec.unit, value, spec.description);
+    });
+    return 0;
+  }
   if (!o.error.empty()) return api::usageError("optimize", o.error);
   std::optional<gait::Character> chosen;
   if (!characterOption(o, &chosen)) return api::usageError("optimize", o.error);

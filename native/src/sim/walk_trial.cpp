@@ -106,9 +106,12 @@ WalkResult runWalk(const WalkOptions& o) {
         btVector3(static_cast<btScalar>(j.x()), 0, static_cast<btScalar>(j.z())));
   }
 
+  size_t nextGait = 0;  // the first entry of the gait schedule not yet taken up
   for (int step = 0; step < steps; ++step) {
     const double t = sim.time();
     if (!o.speedSchedule.empty()) sim.setGoal(0, {goalSpeedAt(o, t), o.turnRate});
+    for (; nextGait < o.gaitSchedule.size() && t >= o.gaitSchedule[nextGait].first; ++nextGait)
+      sim.controller(0).setGait(*o.gaitSchedule[nextGait].second);
     if (step == driftFrom) driftStart = rootState().position;
     if (nextPush >= 0 && t >= nextPush) {
       // A push in the heading frame: lateral (left or right at random), forward or backward.

@@ -36,6 +36,10 @@ struct WalkOptions {
   // A goal-speed schedule (the ramp trial): (time s, speed m/s) points, the goal linear between
   // them and held after the last; empty = `speed` throughout. Times must increase.
   std::vector<std::pair<double, double>> speedSchedule;
+  // Gaits taken up in mid-walk (the demo's gait menu pins one while the character walks):
+  // (time s, gait) points, times increasing; each gait is set at the first step at or after its
+  // time, in mid-stride, as Controller::setGait takes a gait up. The gaits must outlive the walk.
+  std::vector<std::pair<double, const gait::Gait*>> gaitSchedule;
   // Position drift is measured over the last `driftWindow` seconds (0: the second half).
   double driftWindow = 0.0;
   uint32_t seed = 1;

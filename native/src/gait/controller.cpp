@@ -101,25 +101,21 @@ void Controller::setGait(const Gait& gait) {
   // A gait set before the first step (a gait file given at spawn: `gaitlab walk --params`, the
   // optimiser's episodes) starts the gait player from its own footfall pattern, at the phase it
   // was given, as if the character had been spawned with it; once walking, a new gait is taken
-  // up in mid-stride, and one with another footfall pattern where the gait cycle starts again
-  // (within one period): taken up at any phase, 3 to 6 % of the quadruped's switches from the
-  // pace to the walk or the trot fell; at the cycle's start none of 300 switches between its
-  // three gait files (the walking benchmark's switches, docs/controller-notes.md §22).
-  blendAt(std::abs(desiredVelocity_.z()), /*restart=*/!started_, /*waitForCycle=*/true);
+  // up in mid-stride (one of another footfall pattern where the gait cycle starts again).
+  blendAt(std::abs(desiredVelocity_.z()), /*restart=*/!started_);
 }
 
-void Controller::blendAt(double speed, bool restart, bool waitForCycle) {
+void Controller::blendAt(double speed, bool restart, bool cycleStart) {
   const bool first = player_.legCount() == 0 || restart;
   const int legs = static_cast<int>(m_.legs.size());
   GaitParams next;
   paramsAtSpeed(character_, gait_, speed, &next);
   blendedAt_ = speed;
-  // A change of footfall pattern in mid-stride (gait/gait_transition.h): the gait phase moves so
-  // that each leg's own phase moves as little as the two patterns allow. One asked for by the
-  // speed keys happens at once (the speed will not wait: held back a cycle, 2 of 20 runs of the
-  // transition trial between 0.1 and 1 m/s fell); a gait set while walking waits for the cycle.
+  // A change of footfall pattern in mid-stride (gait/gait_transition.h) is taken up where the gait
+  // cycle starts again, and there the gait phase moves so that each leg's own phase moves as
+  // little as the two patterns allow. Until then the parameters stay the old gait's.
   const bool change = !first && footfallDiffers(params_.legs, next.legs, legs);
-  transitionPending_ = change && waitForCycle;
+  transitionPending_ = change && !cycleStart;
   if (transitionPending_) return;
   if (change) {
     player_.shiftPhase(transitionPhaseShift(params_.legs, next.legs, legs));
@@ -212,7 +208,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   const double phaseBefore = player_.phase();
   player_.update(dt, s.footContact);
   // A change of footfall pattern left pending is taken up as the cycle starts again.
-  if (transitionPending_ && player_.phase() < phaseBefore) blendAt(std::abs(desiredVelocity_.z()));
+  if (transitionPending_ && player_.phase() < phaseBefore) blendAt(std::abs(desiredVelocity_.z()), false, true);
   // P0 of a leg whose first swing starts without a lift-off event: where its foot is now.
   if (!started_) {
     for (size_t l = 0; l < m_.legs.size(); ++l)

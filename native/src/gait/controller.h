@@ -104,10 +104,10 @@ class Controller {
 
   // params_ from the gait's keys at |v_d|, and the gait player's period and schedule from them;
   // with `restart` (a gait set before the first step) the player starts again from the schedule,
-  // at the phase it has. With `waitForCycle` (a gait set while walking) a change of footfall
-  // pattern waits for the start of the gait cycle: until then the parameters stay as they are
-  // and the change is pending (update() takes it up as the phase wraps).
-  void blendAt(double speed, bool restart = false, bool waitForCycle = false);
+  // at the phase it has. Once walking, a change of footfall pattern waits for the start of the
+  // gait cycle: until then the parameters stay as they are and the change is pending (update()
+  // takes it up as the phase wraps, `cycleStart`).
+  void blendAt(double speed, bool restart = false, bool cycleStart = false);
 
   const body::Morphology& m_;
   Character character_;
@@ -115,7 +115,7 @@ class Controller {
   GaitParams params_;
   double blendedAt_ = 0;  // the |v_d| params_ was blended at (m/s)
   int gaitChanges_ = 0;
-  bool transitionPending_ = false;  // a gait set while walking waits for the cycle's start
+  bool transitionPending_ = false;  // a change of footfall pattern waits for the cycle's start
   Goal goal_;
   GaitPlayer player_;
   std::vector<LegGeometry> geometry_;

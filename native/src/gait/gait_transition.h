@@ -10,13 +10,16 @@
 //
 // So between two neighbouring keys whose footfall patterns differ (a transition), the parameters
 // are not blended: they are the key of the half of the interval the desired speed is in, and the
-// gait changes at the step where the desired speed crosses the middle. At that step the gait
-// phase Φ is moved by the mean of the legs' step-trigger moves (transitionPhaseShift), so each
-// leg's own phase ψ = Φ − trigger moves as little as the two patterns allow (walk to trot: an
-// eighth of a cycle each, where the triggers move by up to half a cycle). Measured in the walking
+// gait changes once the desired speed has crossed the middle, where the gait cycle next starts
+// (the controller's rule for every change of footfall pattern, a gait pinned by the user too:
+// taken up at whatever phase the stride was in, 3 to 6 % of the quadruped's switches from its
+// pace fell, at the cycle's start none; docs/controller-notes.md §22). There the gait phase Φ is
+// moved by the mean of the legs' step-trigger moves (transitionPhaseShift), so each leg's own
+// phase ψ = Φ − trigger moves as little as the two patterns allow (walk to trot: an eighth of a
+// cycle each, where the triggers move by up to half a cycle). Measured in the walking
 // benchmark's transition trial (goals changing every 1 to 4 s between two speeds across the
 // change, 20 runs per pair): with the shift the quadruped fell in none of 80 runs, without it in
-// 9 (docs/controller-notes.md).
+// 9 (docs/controller-notes.md §20).
 #pragma once
 #include "gait/params.h"
 

@@ -251,10 +251,10 @@ int walk(int argc, char** argv) {
   // Gait files to take up in mid-walk: T:FILE pairs separated by commas, times increasing, each
   // file for the walking character (its own or the one --character or --params chose).
   std::vector<gait::GaitFile> scheduled;
+  std::vector<std::string> paths;  // as given, for the report
   if (o.values.count("--gait-schedule")) {
     constexpr size_t kMaxScheduledGaits = 16;
     std::vector<double> times;
-    std::vector<std::string> paths;
     std::stringstream list(o.values["--gait-schedule"]);
     std::string item;
     while (std::getline(list, item, ',')) {
@@ -269,10 +269,11 @@ int walk(int argc, char** argv) {
     if (times.empty()) return api::usageError("walk", "--gait-schedule: no T:FILE pairs");
     if (times.size() > kMaxScheduledGaits)
       return api::usageError("walk", "--gait-schedule: more than " + std::to_string(kMaxScheduledGaits) + " gaits");
-    scheduled.resize(paths.size());
-    for (size_t i = 0; i < paths.size(); ++i)
+    scheduled.resize(paths.size());  // sized once: gaitSchedule points into it
+    for (size_t i = 0; i < paths.size(); ++i) {
       if (const int status = loadParamsOption(paths[i], c, &scheduled[i])) return status;
-    for (size_t i = 0; i < paths.size(); ++i) w.gaitSchedule.emplace_back(times[i], &scheduled[i].gait);
+      w.gaitSchedule.emplace_back(times[i], &scheduled[i].gait);
+    }
   }
   w.trace = o.flags.count("--trace") > 0;
 
@@ -312,10 +313,7 @@ int walk(int argc, char** argv) {
   }
   if (!w.gaitSchedule.empty()) {
     json list = json::array();
-    std::stringstream items(o.values["--gait-schedule"]);
-    std::string item;
-    for (size_t i = 0; std::getline(items, item, ','); ++i)
-      list.push_back({{"time_s", w.gaitSchedule[i].first}, {"file", item.substr(item.find(':') + 1)}});
+    for (size_t i = 0; i < paths.size(); ++i) list.push_back({{"time_s", w.gaitSchedule[i].first}, {"file", paths[i]}});
     out["gait_schedule"] = list;
   }
   if (w.trace) out["trace"] = r.trace;

@@ -122,3 +122,22 @@ test('walk pushes: a duration past 0.3 s and an unknown direction are refused wi
   assert.equal(r.push_duration_s, 0.3);
   assert.ok(r.pushes_applied >= 2, `${r.pushes_applied} pushes in 1 s of 0.5 s spacing`);
 });
+
+test('walk schedules: a bad T:V or T:FILE entry is refused with the option and the entry named', () => {
+  for (const [option, value, entry] of [
+    ['--speed-schedule', '0:0,2:1,1:0', '1:0'],   // times not increasing
+    ['--speed-schedule', '0:0,-1:1', '-1:1'],     // a negative time
+    ['--speed-schedule', '0:0,2:fast', '2:fast'], // not a speed
+    ['--speed-schedule', '0:0,2:9', '2:9'],       // faster than 5 m/s
+    ['--speed-schedule', '0:0,2', '2'],           // no colon
+    ['--gait-schedule', '1:', '1:'],              // no file
+    ['--gait-schedule', `2:${path.join(root, 'public/presets/biped.json')},1:x.json`, '1:x.json'],
+  ]) {
+    const r = run(['walk', '--seconds', '0.1', option, value]);
+    assert.equal(r.status, 2, `${option} ${value}: ${r.stderr}`);
+    assert.ok(r.stderr.includes(`${option}: '${entry}' is not T:`), `${option} ${value}: ${r.stderr}`);
+  }
+  const ok = run(['walk', '--seconds', '2', '--speed-schedule', '0:0,1:0.5', '--json']);
+  assert.equal(ok.status, 0, ok.stderr);
+  assert.equal(JSON.parse(ok.stdout).goal_speed_m_s, 0.5);
+});

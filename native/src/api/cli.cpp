@@ -40,6 +40,29 @@ namespace {
 
 using nlohmann::json;
 
+// One entry of a timed list (--speed-schedule, --gait-schedule): "T:VALUE", as given and parsed.
+struct TimedItem {
+  std::string item;   // as given, for messages
+  double time = 0;    // s
+  std::string value;  // what follows the colon
+};
+
+// Splits "T:VALUE,T:VALUE,..." with T a number >= 0, increasing, and VALUE not empty. On a bad
+// entry returns false with that entry last in *items (its text for the message).
+bool parseTimedList(const std::string& text, std::vector<TimedItem>* items) {
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    char* end = nullptr;
+    const double t = std::strtod(item.c_str(), &end);
+    const bool ok = end != item.c_str() && *end == ':' && end[1] != '\0' && std::isfinite(t) && t >= 0 &&
+                    (items->empty() || t > items->back().time);
+    items->push_back({item, t, ok ? std::string(end + 1) : std::string()});
+    if (!ok) return false;
+  }
+  return true;
+}
+
 const char* kWalkUsage =
     "usage: gaitlab walk [options]\n"
     "\n"
@@ -234,17 +257,17 @@ int walk(int argc, char** argv) {
   else if (direction == "any") w.pushDirection = sim::PushDirection::Any;
   else return api::usageError("walk", "--push-direction: '" + direction + "' is not lateral, forward, backward or any");
   if (o.values.count("--speed-schedule")) {
-    // T:V pairs separated by commas, times increasing.
-    std::stringstream list(o.values["--speed-schedule"]);
-    std::string item;
-    while (std::getline(list, item, ',')) {
+    // T:V pairs: the goal speed V m/s from T s.
+    const auto bad = [](const std::string& item) {
+      return api::usageError("walk", "--speed-schedule: '" + item + "' is not T:V with T >= 0 and increasing and |V| <= 5");
+    };
+    std::vector<TimedItem> items;
+    if (!parseTimedList(o.values["--speed-schedule"], &items)) return bad(items.back().item);
+    for (const TimedItem& x : items) {
       char* end = nullptr;
-      const double t = std::strtod(item.c_str(), &end);
-      const double v = *end == ':' ? std::strtod(end + 1, &end) : NAN;
-      if (*end != '\0' || !std::isfinite(t) || !std::isfinite(v) || std::abs(v) > 5 ||
-          (!w.speedSchedule.empty() && t <= w.speedSchedule.back().first))
-        return api::usageError("walk", "--speed-schedule: '" + item + "' is not T:V with T increasing and |V| <= 5");
-      w.speedSchedule.emplace_back(t, v);
+      const double v = std::strtod(x.value.c_str(), &end);
+      if (*end != '\0' || !std::isfinite(v) || std::abs(v) > 5) return bad(x.item);
+      w.speedSchedule.emplace_back(x.time, v);
     }
     if (w.speedSchedule.empty()) return api::usageError("walk", "--speed-schedule: no T:V pairs");
   }
@@ -254,25 +277,17 @@ int walk(int argc, char** argv) {
   std::vector<std::string> paths;  // as given, for the report
   if (o.values.count("--gait-schedule")) {
     constexpr size_t kMaxScheduledGaits = 16;
-    std::vector<double> times;
-    std::stringstream list(o.values["--gait-schedule"]);
-    std::string item;
-    while (std::getline(list, item, ',')) {
-      char* end = nullptr;
-      const double t = std::strtod(item.c_str(), &end);
-      if (end == item.c_str() || *end != ':' || end[1] == '\0' || !std::isfinite(t) || t < 0 ||
-          (!times.empty() && t <= times.back()))
-        return api::usageError("walk", "--gait-schedule: '" + item + "' is not T:FILE with T >= 0 and increasing");
-      times.push_back(t);
-      paths.emplace_back(end + 1);
-    }
-    if (times.empty()) return api::usageError("walk", "--gait-schedule: no T:FILE pairs");
-    if (times.size() > kMaxScheduledGaits)
+    std::vector<TimedItem> items;
+    if (!parseTimedList(o.values["--gait-schedule"], &items))
+      return api::usageError("walk", "--gait-schedule: '" + items.back().item + "' is not T:FILE with T >= 0 and increasing");
+    if (items.empty()) return api::usageError("walk", "--gait-schedule: no T:FILE pairs");
+    if (items.size() > kMaxScheduledGaits)
       return api::usageError("walk", "--gait-schedule: more than " + std::to_string(kMaxScheduledGaits) + " gaits");
-    scheduled.resize(paths.size());  // sized once: gaitSchedule points into it
-    for (size_t i = 0; i < paths.size(); ++i) {
+    scheduled.resize(items.size());  // sized once: gaitSchedule points into it
+    for (size_t i = 0; i < items.size(); ++i) {
+      paths.push_back(items[i].value);
       if (const int status = loadParamsOption(paths[i], c, &scheduled[i])) return status;
-      w.gaitSchedule.emplace_back(times[i], &scheduled[i].gait);
+      w.gaitSchedule.emplace_back(items[i].time, &scheduled[i].gait);
     }
   }
   w.trace = o.flags.count("--trace") > 0;

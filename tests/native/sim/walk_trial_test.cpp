@@ -338,7 +338,7 @@ TEST(QuadrupedGaits, APinnedGaitIsTakenUpFromAnyPhaseWithoutAFall) {
 // The walking benchmark's speed-range criteria, shortened (bench/walking.mjs: the sweep, the ramp
 // and the push ladder). Goal 0: both characters step in place (the biped by the low-speed
 // capture-point placement, controller-notes §13) and hold their spot (the controller's standing
-// hold, §16): without the hold the biped crept 0.4 m in 20 s and the quadruped 0.7 m.
+// hold, §16 and §23): without the hold the biped crept 0.4 m in 20 s and the quadruped 0.7 m.
 TEST(SpeedRange, BothCharactersHoldTheirSpotAtGoalZero) {
   for (Character c : {Character::Biped, Character::Quadruped}) {
     WalkOptions o;
@@ -349,13 +349,16 @@ TEST(SpeedRange, BothCharactersHoldTheirSpotAtGoalZero) {
     ASSERT_FALSE(r.fell) << characterName(c) << " fell after " << r.fallTime << " s";
     EXPECT_LT(r.meanSpeed, 0.05) << characterName(c);
     EXPECT_LT(r.positionDrift, 0.1) << characterName(c);  // over the second half; measured 0.02-0.03 m
-    // After walking: up to 1 m/s and back to 0, then 14 s standing.
+    // After walking: up to 1 m/s and back to 0, then 14 s standing, the drift counted from the
+    // moment the goal reaches 0. The quadruped's trot creeps at v_d = 0, and the hold's
+    // proportional term alone left it 0.23 m off its spot (the biped 0.10 m); with the integral
+    // term both come back to it (measured 0.016 and 0.019 m).
     o.speedSchedule = {{0.0, 0.0}, {8.0, 1.0}, {16.0, 0.0}};
     o.seconds = 30;
-    o.driftWindow = 10;
+    o.driftWindow = 14;
     const auto stopped = runWalk(o);
     ASSERT_FALSE(stopped.fell) << characterName(c) << " fell after " << stopped.fallTime << " s";
-    EXPECT_LT(stopped.positionDrift, 0.1) << characterName(c);  // measured 0.04 and 0.02 m
+    EXPECT_LT(stopped.positionDrift, 0.05) << characterName(c);
   }
 }
 

@@ -111,13 +111,18 @@ TEST(BodyStance, TheQuadrupedStandsOnFourFeet) {
   sim.controller(0).setParams(p);
   sim.setGoal(0, {0.0, 0.0});
   const auto start = sim.character(0).segmentState(0);
+  auto lastSecond = start;
   for (int second = 0; second < 10; ++second) {
+    if (second == 9) lastSecond = sim.character(0).segmentState(0);
     sim.step(120);
     ASSERT_FALSE(gaitlab::sim::hasFallen(sim, 0)) << "fell within " << second + 1 << " s";
   }
   const auto end = sim.character(0).segmentState(0);
   EXPECT_LT((end.position - start.position).norm(), 0.2) << "crept over 10 s";
-  EXPECT_LT(end.linearVelocity.norm(), 0.05);
+  // Still: the mean velocity over the last second (m/s). The leg frame trembles on its planted
+  // feet (instantaneous speeds 0.01-0.13 m/s, sampled once a second, with the standing hold's
+  // integral term and without it), so one sample of it says little.
+  EXPECT_LT((end.position - lastSecond.position).norm() / 1.0, 0.05);
   EXPECT_NEAR(end.position.y(), start.position.y(), 0.04);
 }
 
@@ -381,7 +386,7 @@ TEST(SpeedRange, TheBipedFollowsARampUpAndDown) {
 
 // The top of each preset's range (bench/walking.mjs's sweep, shortened): the biped runs at
 // 2.5 m/s with both feet off the ground between steps (2.51 m/s measured), the
-// quadruped trots at its top key, 2.1 m/s (it trots 15-20 % slow there).
+// quadruped trots at its 2.1 key (15-20 % slow there) and at a goal of 2.6 m/s.
 TEST(SpeedRange, TheBipedRunsAndTheQuadrupedTrotsAtTheTopOfTheirRange) {
   WalkOptions o;
   o.character = Character::Biped;
@@ -398,6 +403,12 @@ TEST(SpeedRange, TheBipedRunsAndTheQuadrupedTrotsAtTheTopOfTheirRange) {
   const auto trot = runWalk(o);
   ASSERT_FALSE(trot.fell) << "the trot fell after " << trot.fallTime << " s";
   EXPECT_GT(trot.meanSpeed, 1.5);  // measured 1.66 over the second 10 s (1.78 over 60 s)
+  // Above the 2.1 key the preset's 2.7 key holds the trot up (without it goal 2.6 fell 2.4 s in);
+  // it is walked slow there, 1.94 m/s (controller-notes §24).
+  o.speed = 2.6;
+  const auto fast = runWalk(o);
+  ASSERT_FALSE(fast.fell) << "the trot at 2.6 m/s fell after " << fast.fallTime << " s";
+  EXPECT_GT(fast.meanSpeed, 1.8);
 }
 
 namespace {

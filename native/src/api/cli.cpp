@@ -273,21 +273,19 @@ int walk(int argc, char** argv) {
   }
   // Gait files to take up in mid-walk: T:FILE pairs separated by commas, times increasing, each
   // file for the walking character (its own or the one --character or --params chose).
+  std::vector<TimedItem> gaitItems;  // the files as given, also for the report
   std::vector<gait::GaitFile> scheduled;
-  std::vector<std::string> paths;  // as given, for the report
   if (o.values.count("--gait-schedule")) {
     constexpr size_t kMaxScheduledGaits = 16;
-    std::vector<TimedItem> items;
-    if (!parseTimedList(o.values["--gait-schedule"], &items))
-      return api::usageError("walk", "--gait-schedule: '" + items.back().item + "' is not T:FILE with T >= 0 and increasing");
-    if (items.empty()) return api::usageError("walk", "--gait-schedule: no T:FILE pairs");
-    if (items.size() > kMaxScheduledGaits)
+    if (!parseTimedList(o.values["--gait-schedule"], &gaitItems))
+      return api::usageError("walk", "--gait-schedule: '" + gaitItems.back().item + "' is not T:FILE with T >= 0 and increasing");
+    if (gaitItems.empty()) return api::usageError("walk", "--gait-schedule: no T:FILE pairs");
+    if (gaitItems.size() > kMaxScheduledGaits)
       return api::usageError("walk", "--gait-schedule: more than " + std::to_string(kMaxScheduledGaits) + " gaits");
-    scheduled.resize(items.size());  // sized once: gaitSchedule points into it
-    for (size_t i = 0; i < items.size(); ++i) {
-      paths.push_back(items[i].value);
-      if (const int status = loadParamsOption(paths[i], c, &scheduled[i])) return status;
-      w.gaitSchedule.emplace_back(items[i].time, &scheduled[i].gait);
+    scheduled.resize(gaitItems.size());  // sized once: gaitSchedule points into it
+    for (size_t i = 0; i < gaitItems.size(); ++i) {
+      if (const int status = loadParamsOption(gaitItems[i].value, c, &scheduled[i])) return status;
+      w.gaitSchedule.emplace_back(gaitItems[i].time, &scheduled[i].gait);
     }
   }
   w.trace = o.flags.count("--trace") > 0;
@@ -328,7 +326,7 @@ int walk(int argc, char** argv) {
   }
   if (!w.gaitSchedule.empty()) {
     json list = json::array();
-    for (size_t i = 0; i < paths.size(); ++i) list.push_back({{"time_s", w.gaitSchedule[i].first}, {"file", paths[i]}});
+    for (const TimedItem& x : gaitItems) list.push_back({{"time_s", x.time}, {"file", x.value}});
     out["gait_schedule"] = list;
   }
   if (w.trace) out["trace"] = r.trace;

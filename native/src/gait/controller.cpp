@@ -208,8 +208,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     Vector3d toAnchorWorld = anchor_ - com_;
     toAnchorWorld.y() = 0;
     holdIntegral_ = clampNorm(holdIntegral_ + kHoldIntegralGain * toAnchorWorld * dt, kMaxHoldSpeed);
-    Vector3d toAnchor = worldToHeading(yaw, toAnchorWorld);
-    toAnchor.y() = 0;
+    const Vector3d toAnchor = worldToHeading(yaw, toAnchorWorld);  // y stays 0: a turn about y
     hold_ = clampNorm(kHoldGain * toAnchor + worldToHeading(yaw, holdIntegral_), kMaxHoldSpeed);
   } else {
     anchored_ = false;

@@ -7,6 +7,7 @@
 
 #include "gait/heading.h"
 #include "optimize/random.h"
+#include "sim/box_hits.h"
 #include "sim/walk_trial.h"
 
 namespace gaitlab::optimize {
@@ -41,6 +42,10 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"pushAnyWay", 0, 1, "1", "1: each push lateral, forward or backward at random; 0: lateral only", true},
         s.pushAnyWay);
   visit({"ramp", 0, 1, "1", "1: also an episode per ground and start whose goal ramps 0 → the top speed → 0", true}, s.ramp);
+  double boxHits = s.boxHits;
+  visit({"boxHits", 0, 50, "1", "box-hit episodes per goal speed: a box thrown as the demo throws one, only a fall counts", true},
+        boxHits);
+  s.boxHits = static_cast<int>(std::lround(boxHits));
 }
 
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value) {
@@ -204,6 +209,33 @@ double timingDeviation(const std::vector<double>& measured, const std::vector<do
   return sum / static_cast<double>(legs);
 }
 
+ObjectiveTerms runBoxHitEpisode(gait::Character c, const gait::Gait& gait,
+                                const ObjectiveSettings& settings, double speed, int index, uint32_t seed) {
+  sim::BoxHitOptions o;
+  o.walk.character = c;
+  o.walk.gait = &gait;
+  o.walk.speed = speed;
+  o.walk.turnRate = settings.turnRate;
+  o.walk.seed = seed;
+  // Its own draws per throw index and speed, so that adding a speed or a throw leaves the others'.
+  sim::TrialDraws draw(seed ^ (0x9E3779B9u * static_cast<uint32_t>(index + 1)) ^
+                       static_cast<uint32_t>(std::lround(1000.0 * std::abs(speed))));
+  ObjectiveTerms t;
+  sim::BoxHit hit;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    if (!sim::throwBox(o, draw, &hit)) continue;
+    t.seconds = hit.throwTime + (hit.fell ? hit.fallAfter : sim::kBoxJudgeSeconds);
+    if (hit.fell) {
+      t.fell = true;
+      const double left = std::clamp((sim::kBoxJudgeSeconds - hit.fallAfter) / sim::kBoxJudgeSeconds, 0.0, 1.0);
+      t.fall = settings.fallPenalty * (1.0 + left);
+    }
+    break;
+  }
+  t.total = t.fall;
+  return t;
+}
+
 ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
                         const ObjectiveSettings& settings, uint32_t seed) {
   ObjectiveTerms mean;
@@ -233,6 +265,16 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
         mean.fell = mean.fell || t.fell;
         ++episodes;
       }
+    }
+  }
+  for (double speed : settings.speeds) {
+    for (int k = 0; k < settings.boxHits; ++k) {
+      const ObjectiveTerms t = runBoxHitEpisode(c, gait, settings, speed, k, seed);
+      mean.fall += t.fall;
+      mean.total += t.total;
+      mean.seconds += t.seconds;
+      mean.fell = mean.fell || t.fell;
+      ++episodes;
     }
   }
   if (episodes) {

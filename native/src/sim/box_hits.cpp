@@ -13,7 +13,6 @@ namespace gaitlab::sim {
 
 namespace {
 
-constexpr double kJudgeSeconds = 3.0;  // a hit is judged this long after the throw
 constexpr double kMissMargin = 0.3;    // s after the flight time, then a throw is a miss
 
 }  // namespace
@@ -42,47 +41,54 @@ bool boxTouches(const Simulation& sim, int i) {
   return false;
 }
 
+bool throwBox(const BoxHitOptions& o, TrialDraws& draw, BoxHit* out) {
+  Simulation sim(1, o.walk.seed);
+  setUpWalk(sim, o.walk);
+  // Every draw is taken before the episode runs, so an episode's fall does not shift the next
+  // episode's draws.
+  const double walkFor = 2.0 + 2.0 * draw.unit();
+  const int segment = std::min(sim.character(0).segmentCount() - 1,
+                               static_cast<int>(draw.unit() * sim.character(0).segmentCount()));
+  const double azimuth = 2 * gait::kPi * draw.unit(), distance = 8 + 10 * draw.unit(), height = 1.5 + 2.5 * draw.unit();
+
+  sim.step(static_cast<int>(std::lround(walkFor / physics::kFixedStep)));
+  if (hasFallen(sim, 0)) {  // fell before the throw: the gait, not the box (counted as a fall)
+    *out = {segment, sim.time(), 0.0, true, 0.0};
+    return true;
+  }
+  const Eigen::Vector3d trunk = sim.character(0).segmentState(0).position;
+  const Eigen::Vector3d from(trunk.x() + distance * std::cos(azimuth), height, trunk.z() + distance * std::sin(azimuth));
+  const Eigen::Vector3d target = sim.character(0).segmentState(segment).position;
+  const double speed = pageThrowSpeed((target - from).norm());
+  const Intercept aim = sim.aimAt(0, segment, Eigen::Vector3d::Zero(), from, speed);
+  BoxHit hit{segment, sim.time(), speed, false, -1.0};
+  sim.throwBox(from, aim.velocity, o.half);
+
+  bool touched = false;
+  const int judgeSteps = static_cast<int>(std::lround(kBoxJudgeSeconds / physics::kFixedStep));
+  const int missSteps = static_cast<int>(std::lround((aim.flightTime + kMissMargin) / physics::kFixedStep));
+  for (int step = 0; step < judgeSteps; ++step) {
+    sim.step(1);
+    touched = touched || boxTouches(sim, 0);
+    if (!touched && step >= missSteps) break;
+    if (touched && hasFallen(sim, 0)) {
+      hit.fell = true;
+      hit.fallAfter = sim.time() - hit.throwTime;
+      break;
+    }
+  }
+  if (touched) *out = hit;
+  return touched;
+}
+
 BoxHitResult runBoxHits(const BoxHitOptions& o) {
   BoxHitResult r;
   TrialDraws draw(o.walk.seed);
   const int maxThrows = 3 * o.hits;  // misses are rare (the aim leads the walker); never loop forever
   while (static_cast<int>(r.hits.size()) < o.hits && r.throws < maxThrows) {
-    Simulation sim(1, o.walk.seed);
-    setUpWalk(sim, o.walk);
-    // Every draw is taken before the episode runs, so an episode's fall does not shift the next
-    // episode's draws.
-    const double walkFor = 2.0 + 2.0 * draw.unit();
-    const int segment = std::min(sim.character(0).segmentCount() - 1,
-                                 static_cast<int>(draw.unit() * sim.character(0).segmentCount()));
-    const double azimuth = 2 * gait::kPi * draw.unit(), distance = 8 + 10 * draw.unit(), height = 1.5 + 2.5 * draw.unit();
     ++r.throws;
-
-    sim.step(static_cast<int>(std::lround(walkFor / physics::kFixedStep)));
-    if (hasFallen(sim, 0)) {  // fell before the throw: the gait, not the box (counted as a fall)
-      r.hits.push_back({segment, sim.time(), 0.0, true});
-      continue;
-    }
-    const Eigen::Vector3d trunk = sim.character(0).segmentState(0).position;
-    const Eigen::Vector3d from(trunk.x() + distance * std::cos(azimuth), height, trunk.z() + distance * std::sin(azimuth));
-    const Eigen::Vector3d target = sim.character(0).segmentState(segment).position;
-    const double speed = pageThrowSpeed((target - from).norm());
-    const Intercept aim = sim.aimAt(0, segment, Eigen::Vector3d::Zero(), from, speed);
-    BoxHit hit{segment, sim.time(), speed, false};
-    sim.throwBox(from, aim.velocity, o.half);
-
-    bool touched = false;
-    const int judgeSteps = static_cast<int>(std::lround(kJudgeSeconds / physics::kFixedStep));
-    const int missSteps = static_cast<int>(std::lround((aim.flightTime + kMissMargin) / physics::kFixedStep));
-    for (int step = 0; step < judgeSteps; ++step) {
-      sim.step(1);
-      touched = touched || boxTouches(sim, 0);
-      if (!touched && step >= missSteps) break;
-      if (touched && hasFallen(sim, 0)) {
-        hit.fell = true;
-        break;
-      }
-    }
-    if (touched) r.hits.push_back(hit);
+    BoxHit hit;
+    if (throwBox(o, draw, &hit)) r.hits.push_back(hit);
   }
   return r;
 }

@@ -34,7 +34,11 @@ struct BoxHit {
   double throwTime = 0;   // s after the start of the episode
   double speed = 0;       // m/s, straight distance over flight time
   bool fell = false;      // within 3 s of the throw
+  double fallAfter = -1;  // s from the throw to the fall, -1 if it did not fall
 };
+
+// How long after a throw a hit is judged, s.
+constexpr double kBoxJudgeSeconds = 3.0;
 
 struct BoxHitResult {
   int throws = 0;  // thrown, hits and misses
@@ -43,6 +47,13 @@ struct BoxHitResult {
 };
 
 BoxHitResult runBoxHits(const BoxHitOptions& options);
+
+// One throw of the trial: takes its draws from `draw` (body part, walking time, direction,
+// distance, height), walks a fresh simulation and throws. Returns whether the box touched the
+// character (a hit, written to *hit) or missed. A character that fell before the throw counts
+// as a hit that knocked it over (the gait, not the box: a fall all the same). The optimiser's
+// box-hit episodes (optimize/objective.h) throw with this too.
+bool throwBox(const BoxHitOptions& options, TrialDraws& draw, BoxHit* hit);
 
 // Whether a dynamic body that is not one of character i's (in these scenes, a thrown box) touches
 // one of its bodies now: a contact point within 1 cm.

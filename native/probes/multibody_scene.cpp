@@ -493,19 +493,24 @@ class MultiBodyScene final : public Scene {
   std::vector<std::vector<int>> byWorld_;
 };
 
+// "a,b,c" -> {"a", "b", "c"} (as optimize/settings.cpp splits its lists), with any separator.
+std::vector<std::string> split(const std::string& text, char separator = ',') {
+  std::vector<std::string> parts;
+  for (size_t begin = 0;;) {
+    const size_t at = text.find(separator, begin);
+    parts.push_back(text.substr(begin, at - begin));
+    if (at == std::string::npos) return parts;
+    begin = at + 1;
+  }
+}
+
 std::unique_ptr<Scene> makeScene(const std::string& variant, gait::Character c, int n) {
   if (variant == "gaitlab") return std::make_unique<GaitlabScene>(c, n, 1);
   if (variant == "gaitlab16") return std::make_unique<GaitlabScene>(c, n, 16);
   // "mb" or "mb16", then modifiers joined by '+': pd240, nogyro, rk4, nolimits, it40.
   Options o;
   int worlds = 1;
-  std::vector<std::string> parts;
-  for (size_t start = 0;;) {
-    const size_t plus = variant.find('+', start);
-    parts.push_back(variant.substr(start, plus == std::string::npos ? std::string::npos : plus - start));
-    if (plus == std::string::npos) break;
-    start = plus + 1;
-  }
+  const std::vector<std::string> parts = split(variant, '+');
   if (parts[0] == "mb16")
     worlds = 16;
   else if (parts[0] != "mb")
@@ -525,18 +530,6 @@ std::unique_ptr<Scene> makeScene(const std::string& variant, gait::Character c, 
       return nullptr;
   }
   return std::make_unique<MultiBodyScene>(c, n, worlds, o);
-}
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (start <= s.size()) {
-    const size_t comma = s.find(',', start);
-    out.push_back(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return out;
 }
 
 int usage(const char* self) {

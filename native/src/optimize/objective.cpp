@@ -240,6 +240,21 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
                         const ObjectiveSettings& settings, uint32_t seed) {
   ObjectiveTerms mean;
   int episodes = 0;
+  // Every episode, walking or box-hit, counts once in the mean (a box-hit episode's walking
+  // terms are 0).
+  const auto add = [&](const ObjectiveTerms& t) {
+    mean.fd += t.fd;
+    mean.fv += t.fv;
+    mean.fa += t.fa;
+    mean.fr += t.fr;
+    mean.ft += t.ft;
+    mean.ff += t.ff;
+    mean.fall += t.fall;
+    mean.total += t.total;
+    mean.seconds += t.seconds;
+    mean.fell = mean.fell || t.fell;
+    ++episodes;
+  };
   // The goal speeds, then (with `ramp`) the ramp up to the fastest of them.
   struct Goal {
     double speed;
@@ -252,31 +267,12 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   for (const Ground& ground : settings.grounds) {
     for (const Goal& goal : goals) {
       for (int start = 0; start < settings.starts; ++start) {
-        const ObjectiveTerms t = runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp);
-        mean.fd += t.fd;
-        mean.fv += t.fv;
-        mean.fa += t.fa;
-        mean.fr += t.fr;
-        mean.ft += t.ft;
-        mean.ff += t.ff;
-        mean.fall += t.fall;
-        mean.total += t.total;
-        mean.seconds += t.seconds;
-        mean.fell = mean.fell || t.fell;
-        ++episodes;
+        add(runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp));
       }
     }
   }
-  for (double speed : settings.speeds) {
-    for (int k = 0; k < settings.boxHits; ++k) {
-      const ObjectiveTerms t = runBoxHitEpisode(c, gait, settings, speed, k, seed);
-      mean.fall += t.fall;
-      mean.total += t.total;
-      mean.seconds += t.seconds;
-      mean.fell = mean.fell || t.fell;
-      ++episodes;
-    }
-  }
+  for (double speed : settings.speeds)
+    for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed));
   if (episodes) {
     for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fall, &mean.total}) *v /= episodes;
   }

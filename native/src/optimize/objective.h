@@ -90,8 +90,8 @@ struct ObjectiveSettings {
   // body part from a random side (sim/box_hits.h), judged 3 s after the hit. Such an episode's
   // only term is the fall penalty, scaled by the share of the 3 s left when it fell; it counts
   // as one episode of the mean. The draws follow the evaluation's seed, so every candidate meets
-  // the same throws (and the walking benchmark's trial, seed 7, others: a search does not see
-  // the throws it is judged by).
+  // the same throws; the walking benchmark's trial draws from seed 7, so a search does not see
+  // the throws it is judged by.
   int boxHits = 0;
 };
 

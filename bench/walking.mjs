@@ -273,6 +273,11 @@ async function measureRamp(character) {
   const repeats = await Promise.all(offsets.map((d) => walkAsync(character, ['--speed-schedule', rampAfter(d), '--seconds', d + RAMP_SECONDS])));
   const repeatFalls = repeats.map((x, k) => (x.fell ? x.fall_time_s - offsets[k] : null)).filter((t) => t !== null);
   const within = r.tracking.samples ? r.tracking.within_10pct / r.tracking.samples : 0;
+  // The later starts' speed tracking, by the same reading: how many track within ±10 % at every
+  // sample, and the fewest samples any of them kept (a start from another phase shows whether the
+  // first ramp's tracking is a property of the gait or of that one start).
+  const tracked = repeats.filter((x) => !x.fell && x.tracking.samples && x.tracking.within_10pct === x.tracking.samples).length;
+  const fewest = repeats.reduce((m, x) => (x.tracking.samples ? Math.min(m, x.tracking.within_10pct) : m), Infinity);
   const checks = [
     { what: 'ramp: no fall', ok: !r.fell, value: r.fell ? `fell at ${r.fall_time_s.toFixed(1)} s` : 'no fall' },
     { what: 'ramp: speed within ±10 % of the goal where the goal > 0.3 m/s (lag up to 1 s)', ok: !r.fell && within === 1,
@@ -283,10 +288,13 @@ async function measureRamp(character) {
     { what: `ramp from ${RAMP_REPEATS} later starts (after ${offsets[0]}–${offsets.at(-1)} s standing): no fall`,
       ok: repeatFalls.length === 0,
       value: repeatFalls.length ? `${repeatFalls.length} of ${RAMP_REPEATS} fell, ${repeatFalls.map((t) => t.toFixed(1)).join(', ')} s into the ramp` : 'none fell' },
+    { what: `ramp from ${RAMP_REPEATS} later starts: speed within ±10 % of the goal at every sample (lag up to 1 s)`,
+      ok: tracked === RAMP_REPEATS,
+      value: `${tracked} of ${RAMP_REPEATS}; the fewest samples within: ${fewest}/${r.tracking.samples}` },
   ];
   return { ...stamp, schedule, fell: r.fell, fall_time_s: r.fall_time_s, tracking: r.tracking,
     standing_drift_m: r.position_drift_m, repeats: RAMP_REPEATS, repeat_falls: repeatFalls.length,
-    repeat_fall_times_s: repeatFalls, checks };
+    repeat_fall_times_s: repeatFalls, repeats_tracked: tracked, repeats_fewest_within: fewest, checks };
 }
 
 // The push ladder: three directions, walking at the cruise speed and standing. The ladder

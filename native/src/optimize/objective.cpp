@@ -23,6 +23,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"wr", 0, 1000, "1/rad²", "w_r: weight of leg-frame rotation deviation f_r (eq. 3.10)"}, s.wr);
   visit({"wt", 0, 1000, "1", "w_t: weight of footfall timing deviation f_t, duty factors measured against configured (ours)"}, s.wt);
   visit({"wf", 0, 1000, "1", "w_f: weight of flight f_f, the share of time with no foot on the ground: a walk has none (ours)"}, s.wf);
+  visit({"wk", 0, 1000, "1", "w_k: weight of speed tracking f_k, the share of a ramp episode's 2 s speed samples off the goal by more than 10 % (the walking benchmark's ramp criterion; ours)"}, s.wk);
   visit({"fallPenalty", 0, 1e6, "1", "added for a fall, scaled by 1 + the share of the episode left"},
         s.fallPenalty);
   visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
@@ -135,7 +136,7 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
   lastTime_ = time;
 }
 
-ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, double ff) const {
+ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, double ff, double fk) const {
   ObjectiveTerms t;
   const double travel = (travel_ - goalTravel_) / std::max(std::abs(goalTravel_), 1.0);
   const double posture = frameSamples_ ? postureSum_ / frameSamples_ : 0.0;
@@ -145,6 +146,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
   t.fr = frameSamples_ ? rotationSum_ / frameSamples_ : 0.0;
   t.ft = ft;
   t.ff = ff;
+  t.fk = fk;
   t.fell = fell;
   t.seconds = fell ? fallTime : lastTime_;
   if (fell) {
@@ -152,7 +154,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
     t.fall = settings_.fallPenalty * (1.0 + left);
   }
   t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr +
-            settings_.wt * t.ft + settings_.wf * t.ff + t.fall;
+            settings_.wt * t.ft + settings_.wf * t.ff + settings_.wk * t.fk + t.fall;
   return t;
 }
 
@@ -198,7 +200,12 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
     recorder.add(s.time(), frames.data(), static_cast<int>(frames.size()));
   };
   const sim::WalkResult r = sim::runWalk(w);
-  return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig), r.flightFraction);
+  return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig), r.flightFraction,
+                         trackingMisses(r.trackingSamples, r.trackingWithin));
+}
+
+double trackingMisses(int samples, int within) {
+  return samples > 0 ? static_cast<double>(samples - within) / samples : 0.0;
 }
 
 double timingDeviation(const std::vector<double>& measured, const std::vector<double>& configured) {
@@ -249,6 +256,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     mean.fr += t.fr;
     mean.ft += t.ft;
     mean.ff += t.ff;
+    mean.fk += t.fk;
     mean.fall += t.fall;
     mean.total += t.total;
     mean.seconds += t.seconds;
@@ -274,7 +282,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   for (double speed : settings.speeds)
     for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed));
   if (episodes) {
-    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fall, &mean.total}) *v /= episodes;
+    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fk, &mean.fall, &mean.total}) *v /= episodes;
   }
   return mean;
 }

@@ -28,6 +28,14 @@
 //        real stance time is from the footfall pattern (late strikes shorten it; the walking
 //        criteria ask for ±0.1).
 //
+// and a sixth, also 0 unless weighted (w_k), for ramp episodes only:
+//
+//   f_k  the share of the ramp's speed samples off the goal by more than 10 %: the walking
+//        benchmark's ramp criterion itself (sim::runWalk's tracking: the speed over 2 s windows
+//        every 0.1 s against the goal at a lag of up to 1 s, where the goal exceeds 0.3 m/s).
+//        f_v is a per-step error, in which the stride's own swing of the velocity outweighs a
+//        mean 10 % too fast; f_k sees only the mean (docs/controller-notes.md §27).
+//
 // A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
 // any fall scores worse than any walk whose terms stay below fallPenalty, and a later fall
 // scores better than an earlier one, so a search that starts from a falling gait climbs
@@ -64,6 +72,7 @@ struct ObjectiveSettings {
   double wd = 1.0, wv = 1.0, wa = 1.0, wr = 1.0;  // w_d, w_v, w_h, w_r of eq. 3.10
   double wt = 0.0;                                 // w_t of f_t (footfall timing, ours)
   double wf = 0.0;                                 // w_f of f_f (flight: no foot down, ours)
+  double wk = 0.0;                                 // w_k of f_k (a ramp's speed tracking, ours)
   double fallPenalty = 100.0;
   double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
   double warmup = 1.0;             // s before travel and velocity are measured
@@ -117,8 +126,9 @@ struct ObjectiveTerms {
   double fd = 0, fv = 0, fa = 0, fr = 0;
   double ft = 0;          // footfall timing deviation (duty factors)
   double ff = 0;          // flight: the share of the time with no foot on the ground
+  double fk = 0;          // a ramp's speed samples off the goal by more than 10 %, as a share
   double fall = 0;        // the fall penalty, 0 if it did not fall
-  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + fall
+  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + w_k·f_k + fall
   bool fell = false;
   double seconds = 0;     // simulated
 };
@@ -143,8 +153,9 @@ class ObjectiveRecorder {
   void add(double time, const LegFrameSample* frames, int count);
 
   // Terms over what was recorded; `fell` at `fallTime` adds the fall penalty. `ft`: the
-  // episode's footfall timing deviation (timingDeviation, from the walk's duty factors).
-  ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0, double ff = 0.0) const;
+  // episode's footfall timing deviation (timingDeviation, from the walk's duty factors); `ff`
+  // its flight share; `fk` its speed tracking's misses (trackingMisses).
+  ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0, double ff = 0.0, double fk = 0.0) const;
 
   double goalHeading(double time) const { return startHeading_ + settings_.turnRate * time; }
   // A goal speed that changes: (time s, speed m/s) points (sim::scheduleAt), instead of the
@@ -165,6 +176,10 @@ class ObjectiveRecorder {
 
 // f_t of one episode: the mean over legs of (measured − configured duty factor)²; 0 for no legs.
 double timingDeviation(const std::vector<double>& measured, const std::vector<double>& configured);
+
+// f_k of one episode: the share of its speed-tracking samples (sim::WalkResult) off by more than
+// 10 %; 0 for a walk that has none (no speed schedule).
+double trackingMisses(int samples, int within);
 
 // One episode: the character walks with `params` on `ground` from start state `start` at goal
 // `speed` (sim::runWalk with the recorder observing every step); with `ramp`, the goal ramps

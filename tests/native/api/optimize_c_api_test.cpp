@@ -96,7 +96,7 @@ TEST(OptimizeCApi, DescribesItsSettingsWithBoundsAndDefaults) {
     EXPECT_NE(opt, nullptr) << gl_last_error();
     gl_opt_destroy(opt);
   }
-  EXPECT_EQ(names, "wd wv wa wr wt wf fallPenalty seconds warmup starts startImpulse startPhases turnRate pushImpulse pushEvery pushDuration pushAnyWay ramp boxHits ");
+  EXPECT_EQ(names, "wd wv wa wr wt wf wk fallPenalty seconds warmup starts startImpulse startPhases turnRate pushImpulse pushEvery pushDuration pushAnyWay ramp boxHits ");
   EXPECT_EQ(j["speeds"]["min"], -5.0);
   EXPECT_EQ(j["speeds"]["max"], 5.0);
   EXPECT_EQ(j["speeds"]["default"], json::array({1.0}));

@@ -204,6 +204,44 @@ TEST(OptimizeObjective, FlightCountsInTheTotalByItsWeight) {
   EXPECT_NEAR(total(0, 0.1), total(0, 0.0), 1e-12);
 }
 
+// The tracking term f_k (ours) is the share of a ramp episode's speed samples off the goal by
+// more than 10 %, exactly what the walking benchmark's ramp counts (sim::runWalk's tracking),
+// weighted by w_k into the total; an episode without a ramp has no samples and no f_k.
+TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
+  EXPECT_EQ(trackingMisses(0, 0), 0.0);
+  EXPECT_DOUBLE_EQ(trackingMisses(528, 504), 24.0 / 528.0);
+
+  const gait::Gait preset = gait::defaultGait(gait::Character::Quadruped);
+  ObjectiveSettings s;
+  s.seconds = 12.0;
+  s.speeds = {2.5};
+  const uint32_t seed = 3;
+  const ObjectiveTerms steady = runEpisode(gait::Character::Quadruped, preset, s, 2.5, 0, seed, Ground{}, false);
+  EXPECT_EQ(steady.fk, 0.0);
+  const ObjectiveTerms ramp = runEpisode(gait::Character::Quadruped, preset, s, 2.5, 0, seed, Ground{}, true);
+  ASSERT_FALSE(ramp.fell);
+  // The same walk as the benchmark runs it: the episode's ramp, start 0 (no nudge, the gait's phase).
+  sim::WalkOptions w;
+  w.character = gait::Character::Quadruped;
+  w.gait = &preset;
+  w.seconds = s.seconds;
+  w.speedSchedule = {{0.0, 0.0}, {0.5 * s.seconds, 2.5}, {s.seconds, 0.0}};
+  w.seed = seed;
+  const sim::WalkResult r = sim::runWalk(w);
+  // A ramp to 2.5 m/s in 6 s: the trot, which walks about 2 m/s at its top, misses some samples.
+  ASSERT_GT(r.trackingSamples, 0);
+  ASSERT_GT(ramp.fk, 0.0);
+  EXPECT_EQ(ramp.fk, trackingMisses(r.trackingSamples, r.trackingWithin));
+  // Weighted into the total, and nothing else moves.
+  s.wk = 100;
+  const ObjectiveTerms weighted = runEpisode(gait::Character::Quadruped, preset, s, 2.5, 0, seed, Ground{}, true);
+  EXPECT_EQ(weighted.fk, ramp.fk);
+  EXPECT_DOUBLE_EQ(weighted.total - ramp.total, 100 * ramp.fk);
+  // In the mean over a steady episode and a ramp episode, as every term.
+  s.ramp = 1;
+  EXPECT_DOUBLE_EQ(evaluate(gait::Character::Quadruped, preset, s, seed).fk, ramp.fk / 2);
+}
+
 // A ramp episode's goal changes with time (setGoalSchedule): a walker that follows the ramp
 // exactly has no velocity or travel deviation; one that holds the top speed throughout does.
 TEST(OptimizeObjective, ARampingGoalIsFollowedInTime) {

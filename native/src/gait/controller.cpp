@@ -44,6 +44,13 @@ constexpr double kMaxSwingRate = 20.0;
 constexpr double kSpeedTrackedFrom = 0.15;
 constexpr double kMaxSpeedTrim = 0.5;
 constexpr double kSpeedTrimFade = 0.5;
+// Speed tracking's proportional term (GaitParams::speedProportionalGain): the speed error is
+// averaged by a first-order filter of this time constant (s), about a stride, and the term is
+// bounded (m/s). The integral alone took 10–20 % too fast out of the biped's start only over
+// several seconds; the bound keeps a push, whose error is 0.5–1 m/s, from being fought with the
+// full gain (docs/controller-notes.md §28: 0.5 s and 0.1 m/s at gain 8 kept every held push).
+constexpr double kSpeedMeanWindow = 0.5;
+constexpr double kMaxSpeedCorrection = 0.1;
 
 // Standing (goal speed 0, beyond the thesis): the spot held, by a desired velocity of kHoldGain
 // times the distance to it, at most kMaxHoldSpeed; and how far a character may be carried from it
@@ -192,6 +199,14 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     speedTrim_ *= std::exp(-dt / kSpeedTrimFade);
   }
   speedTrim_ = std::clamp(speedTrim_, -kMaxSpeedTrim, kMaxSpeedTrim);
+  // The proportional term, counted and faded exactly as the integral is.
+  if (desiredVelocity_.z() >= kSpeedTrackedFrom) {
+    if (desiredVelocity_.z() == goal_.speed)
+      meanSpeedError_ += (dt / kSpeedMeanWindow) * ((desiredVelocity_.z() - velocityH.z()) - meanSpeedError_);
+  } else {
+    meanSpeedError_ *= std::exp(-dt / kSpeedTrimFade);
+  }
+  speedCorrection_ = std::clamp(params_.speedProportionalGain * meanSpeedError_, -kMaxSpeedCorrection, kMaxSpeedCorrection);
 
   // Standing: once the goal is 0 and the ramp has reached it, hold the spot where the centre of
   // mass was then, by a small desired velocity towards it (heading frame) that the foot placement

@@ -134,13 +134,17 @@ class Controller {
   double weight_ = 0;  // N, the whole character's
   Eigen::Vector3d com_ = Eigen::Vector3d::Zero();  // centre of mass this step (swing placement)
   double speedTrim_ = 0;  // m/s, speed tracking's correction of v_d in F_v (speedIntegralGain)
+  double meanSpeedError_ = 0;   // m/s, v_d − v averaged over about a stride (speedProportionalGain)
+  double speedCorrection_ = 0;  // m/s, the proportional term's correction of v_d in F_v
   // Standing: the spot held (world), whether one is, the hold's integral term (world) and the
   // velocity towards the spot (heading frame).
   Eigen::Vector3d anchor_ = Eigen::Vector3d::Zero();
   bool anchored_ = false;
   Eigen::Vector3d holdIntegral_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hold_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d trimmedVelocity() const { return desiredVelocity_ + hold_ + Eigen::Vector3d(0, 0, speedTrim_); }
+  Eigen::Vector3d trimmedVelocity() const {
+    return desiredVelocity_ + hold_ + Eigen::Vector3d(0, 0, speedTrim_ + speedCorrection_);
+  }
 };
 
 }  // namespace gaitlab::gait

@@ -66,6 +66,11 @@ struct GaitParams {
   // Speed tracking (beyond the thesis): the velocity F_v (eq. 3.6) aims at is v_d plus the
   // integral of the speed error (v_d − v) at this rate, 1/s; 0 = F_v towards v_d as in the thesis.
   double speedIntegralGain = 0;
+  // And a proportional term on the speed error averaged over about a stride (kSpeedMeanWindow):
+  // F_v aims at v_d plus this gain times that mean error (bounded), so a walk that runs 10 % fast
+  // for a second is pulled back within the second, while the error within one stride (the
+  // velocity's own swing, a push) moves it little. 0 = no such term (schemas before 5).
+  double speedProportionalGain = 0;
   JointGains gains;
   LegFrameParams legFrames[kMaxLegFrames];
   LegParams legs[kMaxLegs];

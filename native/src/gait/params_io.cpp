@@ -155,6 +155,11 @@ void migrateParams(int version, json* params) {
   }
   // 4: speed keys ("speed" and "keys" beside "params", gait/speed_keys.h); the parameters are
   // unchanged, and a file without keys walks as before.
+  if (version < 5) {
+    // 5: speed tracking's proportional term on the stride-mean speed error
+    // (speedProportionalGain; 0 is F_v as before).
+    if (!params->contains("speedProportionalGain")) (*params)["speedProportionalGain"] = 0.0;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

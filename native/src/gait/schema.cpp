@@ -75,6 +75,10 @@ Table build(Character c) {
          "speed tracking: F_v aims at v_d plus the integral of the speed error (v_d − v) at this "
          "rate, so the measured speed settles on the goal; 0: F_v towards v_d only (eq. 3.6)",
          proto.speedIntegralGain);
+  scalar("speedProportionalGain", kStance, {0, 20}, "1",
+         "speed tracking: F_v also aims this many times the speed error averaged over about a "
+         "stride (0.5 s, bounded to 0.1 m/s) above v_d; 0: no such term",
+         proto.speedProportionalGain);
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

@@ -84,7 +84,7 @@ void fromVector(Character c, const std::vector<double>& values, GaitParams* para
 // Per-dimension bounds, in the same order.
 void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi);
 
-// The schema as JSON: {"version":4,"characters":{"biped":[entries],"quadruped":[entries]},
+// The schema as JSON: {"version":5,"characters":{"biped":[entries],"quadruped":[entries]},
 // "morphologies":{"biped":{"kind","legFrames":[{"index","name"}],"legs":[{"index","name",
 // "legFrame","side"}]},...}}, entry = {"name","group","min","max","default","unit",
 // "description","knots","field"} and, per leg frame or leg, "legFrame" or "leg": {"index","name"};
@@ -92,6 +92,6 @@ void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi);
 // character.
 std::string schemaJson(std::optional<Character> only = std::nullopt);
 
-constexpr int kSchemaVersion = 4;
+constexpr int kSchemaVersion = 5;
 
 }  // namespace gaitlab::gait

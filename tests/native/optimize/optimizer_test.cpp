@@ -441,6 +441,7 @@ gait::GaitParams detunedBiped() {
   start.legFrames[0].heightKp *= 0.5;
   start.gains.hipKp *= 0.5;
   start.period = 1.6;
+  start.speedProportionalGain = 0;  // the speed term steadies it enough to stay up for the 3 s
   return start;
 }
 

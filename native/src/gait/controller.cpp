@@ -192,20 +192,19 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   // wound the trim up on every start from rest (from 0.15 m/s one biped in 16 of the crowd
   // benchmark's fell), so the error counts only once v_d has reached the goal (or follows a
   // goal that moves slower than maxAcceleration).
+  // The proportional term on the stride-mean error (speedProportionalGain) counts and fades alike.
   if (desiredVelocity_.z() >= kSpeedTrackedFrom) {
-    if (desiredVelocity_.z() == goal_.speed)
-      speedTrim_ += params_.speedIntegralGain * (desiredVelocity_.z() - velocityH.z()) * dt;
+    if (desiredVelocity_.z() == goal_.speed) {
+      const double error = desiredVelocity_.z() - velocityH.z();
+      speedTrim_ += params_.speedIntegralGain * error * dt;
+      meanSpeedError_ += (dt / kSpeedMeanWindow) * (error - meanSpeedError_);
+    }
   } else {
-    speedTrim_ *= std::exp(-dt / kSpeedTrimFade);
+    const double fade = std::exp(-dt / kSpeedTrimFade);
+    speedTrim_ *= fade;
+    meanSpeedError_ *= fade;
   }
   speedTrim_ = std::clamp(speedTrim_, -kMaxSpeedTrim, kMaxSpeedTrim);
-  // The proportional term, counted and faded exactly as the integral is.
-  if (desiredVelocity_.z() >= kSpeedTrackedFrom) {
-    if (desiredVelocity_.z() == goal_.speed)
-      meanSpeedError_ += (dt / kSpeedMeanWindow) * ((desiredVelocity_.z() - velocityH.z()) - meanSpeedError_);
-  } else {
-    meanSpeedError_ *= std::exp(-dt / kSpeedTrimFade);
-  }
   speedCorrection_ = std::clamp(params_.speedProportionalGain * meanSpeedError_, -kMaxSpeedCorrection, kMaxSpeedCorrection);
 
   // Standing: once the goal is 0 and the ramp has reached it, hold the spot where the centre of

@@ -98,7 +98,10 @@ export interface GaitlabHook {
   setTerrain(kind: TerrainKind): void;
   /** Height of the drawn ground at (x, z): from the samples the page drew, the physics' own. */
   groundHeight(x: number, z: number): number | null;
-  /** Puts the camera at `from` looking at `to` (screenshots and tests; orbiting continues from there). */
+  /**
+   * Puts the camera at `from` looking at `to` (screenshots and tests; orbiting continues from
+   * there), and keeps that distance as a user's zoom is kept, until "frame the crowd".
+   */
   view(from: Vec3, to: Vec3): void;
   /**
    * Every body of the newest simulation frame (read from the shared render buffer now, and then

@@ -169,6 +169,9 @@ export class Stage {
 
   /** Puts the camera at `from`, looking at `to`. */
   view(from: THREE.Vector3, to: THREE.Vector3): void {
+    // A distance chosen, as the user's own zoom is: kept from then on (keepInView would back off to
+    // hold the whole crowd, which a fast character followed for a filmstrip has left far behind).
+    this.autoZoom = false;
     this.controls.target.copy(to);
     this.camera.position.copy(from);
     this.controls.update();

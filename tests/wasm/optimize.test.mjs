@@ -77,6 +77,18 @@ test('optimize --key tunes one speed key and keeps the others as they were', () 
   assert.deepEqual(Object.keys(file.keys[0].params), Object.keys(preset.keys[0].params));
 });
 
+test('optimize --hold leaves the held parameters as they were', () => {
+  const out = path.join(dir, 'held.json');
+  const r = run(native, ['optimize', '--character', 'quadruped', '--hold', 'stepTrigger,front.pitch', '--generations', '2',
+    '--candidates', '4', '--seconds', '1', '--seed', '5', '--out', out, '--json']);
+  assert.equal(r.status, 0, r.stderr);
+  const preset = JSON.parse(readFileSync(path.join(root, 'public/presets/quadruped.json'), 'utf8'));
+  const file = JSON.parse(readFileSync(out, 'utf8'));
+  for (const name of ['frontLeft.stepTrigger', 'frontRight.stepTrigger', 'backLeft.stepTrigger', 'backRight.stepTrigger', 'front.pitch'])
+    assert.deepEqual(file.params[name], preset.params[name], name);
+  assert.match(file.meta.command, /--hold stepTrigger,front\.pitch/);
+});
+
 test('optimize refuses bad options', () => {
   for (const [args, message] of [
     [['optimize', '--generations', '1'], /--out FILE is required/],
@@ -87,6 +99,8 @@ test('optimize refuses bad options', () => {
     [['optimize', '--grounds', 'flat,hill', '--out', '/tmp/x.json'], /--grounds: 'hill' is not flat, slope or bumps/],
     [['optimize', '--grounds', 'slope@down', '--out', '/tmp/x.json'], /--grounds: 'slope@down': the heading after '@' is not a number/],
     [['optimize', '--candidates', '1', '--out', '/tmp/x.json'], /--candidates: 1 is outside/],
+    [['optimize', '--hold', 'stepTrigger,bogus', '--out', '/tmp/x.json'], /--hold: 'bogus' is not a parameter of the biped/],
+    [['optimize', '--hold', 'stepTrigger,', '--out', '/tmp/x.json'], /--hold: expected NAME,\.\.\. \(an empty name/],
     [['optimize', '--key', '1.2', '--out', '/tmp/x.json'],
       new RegExp(`--key: the gait has no key at 1\\.2 m/s; its keys are at ${bipedKeySpeeds.join(', ').replaceAll('.', '\\.')} m/s`)],
   ]) {

@@ -108,6 +108,9 @@ const char* kOptimizeUsage =
     "  --params FILE                 start from this gait file (default: the preset)\n"
     "  --key M_S                     of a gait with speed keys, tune the key at this speed\n"
     "                                (default: the file's \"params\"); episodes walk with every key\n"
+    "  --hold NAME,...               parameters left as they start: schema names\n"
+    "                                (frontLeft.stepTrigger) or a field every leg or leg frame\n"
+    "                                has (stepTrigger: every leg's), e.g. to keep a footfall pattern\n"
     "  --method greedy|cmaes         greedy stochastic search of §3.3 (default) or CMA-ES\n"
     "  --generations N               1 to 1000000 (default 20)\n"
     "  --candidates K                evaluations per generation, 2 to 1000 (default 10)\n"
@@ -415,7 +418,7 @@ json termsJson(const optimize::ObjectiveTerms& t) {
 int optimizeCommand(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
-             "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective", "--key"},
+             "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective", "--key", "--hold"},
             {"--json"});
   if (o.help) {
     // The settings come from the table that parses them, so the help cannot leave one out.
@@ -458,6 +461,19 @@ int optimizeCommand(int argc, char** argv) {
     }
   }
   const gait::GaitParams tuned = search.gait.keys[search.key].params;
+  if (o.values.count("--hold")) {
+    std::string list = o.values["--hold"];
+    for (size_t at = 0; at <= list.size();) {
+      const size_t comma = std::min(list.find(',', at), list.size());
+      const std::string name = list.substr(at, comma - at);
+      if (name.empty()) return api::usageError("optimize", "--hold: expected NAME,... (an empty name in '" + list + "')");
+      search.held.push_back(name);
+      at = comma + 1;
+    }
+    std::vector<bool> mask;
+    const std::string error = optimize::heldCoordinates(search.character, search.held, &mask);
+    if (!error.empty()) return api::usageError("optimize", "--hold: " + error);
+  }
 
   const std::string method = o.values.count("--method") ? o.values["--method"] : "greedy";
   if (!optimize::parseMethod(method, &search.method))

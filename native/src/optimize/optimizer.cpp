@@ -34,6 +34,27 @@ std::vector<double> perturb(const std::vector<double>& x, const std::vector<doub
   return y;
 }
 
+std::string heldCoordinates(gait::Character c, const std::vector<std::string>& names, std::vector<bool>* mask) {
+  const std::vector<gait::ParamSpec>& specs = gait::paramSpecs(c);
+  std::vector<bool> held(gait::paramDimension(c), false);
+  for (const std::string& name : names) {
+    bool found = false;
+    size_t at = 0;
+    for (const gait::ParamSpec& spec : specs) {
+      if (spec.name == name || spec.field == name) {
+        found = true;
+        for (int k = 0; k < spec.knots; ++k) held[at + k] = true;
+      }
+      at += spec.knots;
+    }
+    if (!found)
+      return "'" + name + "' is not a parameter of the " + gait::characterName(c) +
+             " (a name such as those `gaitlab schema` lists, or a field every leg has, such as stepTrigger)";
+  }
+  *mask = std::move(held);
+  return "";
+}
+
 Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start)
     : options_(options), rng_(options.seed), start_(start), best_(start),
       bestObjective_(std::numeric_limits<double>::infinity()), pool_(std::max(1, options.threads)) {
@@ -41,6 +62,7 @@ Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start
   // A start outside the bounds (hand-edited in code, not loaded from a file) is brought inside.
   bestVector_ = gait::toVector(options.character, start);
   for (size_t i = 0; i < bestVector_.size(); ++i) bestVector_[i] = std::clamp(bestVector_[i], lo_[i], hi_[i]);
+  if (!heldCoordinates(options.character, options.held, &held_).empty()) held_.assign(bestVector_.size(), false);
 }
 
 ObjectiveTerms Optimizer::score(const gait::GaitParams& params) const {
@@ -59,8 +81,14 @@ gait::Gait Optimizer::gaitWith(const gait::GaitParams& params) const {
 
 Generation Optimizer::step() {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<std::vector<double>> points = propose();
+  std::vector<std::vector<double>> points = propose();
   const int k = static_cast<int>(points.size());
+  // Held coordinates are evaluated as they started, whatever the method proposed for them (the
+  // best vector keeps the start's values there, so the greedy copies and every winner do too;
+  // CMA-ES's distribution moves along them without effect).
+  for (std::vector<double>& p : points)
+    for (size_t i = 0; i < held_.size() && i < p.size(); ++i)
+      if (held_[i]) p[i] = bestVector_[i];
   std::vector<gait::GaitParams> candidates(k, start_);
   for (int i = 0; i < k; ++i) gait::fromVector(options_.character, points[i], &candidates[i]);
 

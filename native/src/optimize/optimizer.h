@@ -53,7 +53,18 @@ struct SearchOptions {
   // whole gait.
   gait::Gait gait;
   int key = 0;
+  // Parameters the search leaves as they start, each a schema name ("frontLeft.stepTrigger") or a
+  // field every leg or leg frame has ("stepTrigger": every leg's): a search for a canter keeps its
+  // footfall pattern this way, where a free search moves the triggers back to a gait it already
+  // knows (docs/controller-notes.md §33). Checked by heldCoordinates.
+  std::vector<std::string> held;
 };
+
+// Marks the coordinates of the flat parameter vector (gait::toVector) that `names` hold: mask has
+// gait::paramDimension(c) entries, a graph's knots all held with it. Returns "'NAME' is not a
+// parameter of the CHARACTER (...)" for a name that is neither a parameter nor a field, empty on
+// success.
+std::string heldCoordinates(gait::Character c, const std::vector<std::string>& names, std::vector<bool>* mask);
 
 // §3.3's perturbation of a flat parameter vector: each coordinate independently, with
 // probability `probability`, moves by U(−scale, scale)·(hi − lo), then is clamped to [lo, hi].
@@ -104,6 +115,7 @@ class Optimizer {
 
   SearchOptions options_;
   std::vector<double> lo_, hi_;
+  std::vector<bool> held_;  // per coordinate: left as it starts (SearchOptions::held)
   Random rng_;
   gait::GaitParams start_;  // fields the schema does not cover (a biped's unused ones) come from here
   gait::GaitParams best_;

@@ -3,6 +3,7 @@
 // short search that improves a detuned gait.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -580,4 +581,43 @@ TEST(OptimizeSearch, AShortSearchImprovesADetunedGait) {
       EXPECT_LE(f.values[k], f.spec.max);
     }
   });
+}
+
+// Held parameters (SearchOptions::held, `gaitlab optimize --hold`): a search for another gait
+// keeps its footfall pattern. Every leg's step trigger and the pitch graph are held; the same
+// search from the detuned biped still improves, by the parameters it may change.
+TEST(OptimizeSearch, HeldParametersStayAsTheyStartWhileTheRestIsSearched) {
+  const gait::GaitParams start = detunedBiped();
+  for (Method m : {Method::Greedy, Method::CmaEs}) {
+    SCOPED_TRACE(methodName(m));
+    SearchOptions o = quickSearch(m, 2);
+    o.candidates = 6;
+    o.objective.seconds = 3.0;
+    o.held = {"stepTrigger", "legFrame.pitch"};
+    auto opt = Optimizer::create(o, start);
+    const double first = opt->step().bestObjective;
+    for (int g = 1; g < 6; ++g) opt->step();
+    EXPECT_LT(opt->bestObjective(), first);
+    const gait::GaitParams& best = opt->best();
+    for (int l = 0; l < 2; ++l) EXPECT_EQ(best.legs[l].stepTrigger, start.legs[l].stepTrigger);
+    for (int k = 0; k < gait::MotionGraph::kKnots; ++k)
+      EXPECT_EQ(best.legFrames[0].pitch.knots[k], start.legFrames[0].pitch.knots[k]);
+    // ... while what is not held moved.
+    const std::vector<double> a = gait::toVector(gait::Character::Biped, start);
+    const std::vector<double> b = gait::toVector(gait::Character::Biped, best);
+    EXPECT_NE(a, b);
+  }
+}
+
+TEST(OptimizeSearch, HeldNamesAreParametersOrFieldsAndOthersAreRefused) {
+  std::vector<bool> mask;
+  EXPECT_EQ(heldCoordinates(gait::Character::Quadruped, {"frontLeft.stepTrigger"}, &mask), "");
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), true), 1);
+  EXPECT_EQ(heldCoordinates(gait::Character::Quadruped, {"stepTrigger"}, &mask), "");
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), true), 4);  // one per leg
+  EXPECT_EQ(heldCoordinates(gait::Character::Quadruped, {"front.pitch", "period"}, &mask), "");
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), true), gait::MotionGraph::kKnots + 1);
+  const std::string error = heldCoordinates(gait::Character::Biped, {"period", "frontLeft.stepTrigger"}, &mask);
+  EXPECT_NE(error.find("'frontLeft.stepTrigger' is not a parameter of the biped"), std::string::npos) << error;
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), true), gait::MotionGraph::kKnots + 1) << "unchanged on a refusal";
 }

@@ -16,7 +16,8 @@
 //   - criteria: the walking criteria below;
 //   - sweep: goal speeds from 0 to beyond the top of the character's range in --step m/s steps,
 //     --seconds each: fell or not, measured speed, heading and position drift, duty factors,
-//     flight fraction (share of time with no foot down);
+//     flight fraction (share of time with no foot down), and the share of the time it stood on
+//     planted feet (goal 0: standing still, native/src/gait/standing.cpp);
 //   - ramp: the goal from 0 up to the top speed and back to 0 over 60 s, then 20 s at 0: no fall,
 //     speed within ±10 % of the goal wherever the goal exceeds 0.3 m/s (after a lag of up to 1 s;
 //     the count at exactly 1 s is shown beside it),
@@ -244,7 +245,7 @@ async function measureSweep(character) {
     goal: goals[i], fell: r.fell, fall_time_s: r.fall_time_s, mean_speed_m_s: r.mean_speed_m_s,
     heading_drift_deg: r.heading_drift_deg, position_drift_m: r.position_drift_m,
     duty_factor_measured: r.duty_factor_measured, duty_factor_config: r.duty_factor_config,
-    flight_fraction: r.flight_fraction, gait: paramsFile ? path.basename(paramsFile, '.json') : 'preset',
+    flight_fraction: r.flight_fraction, standing_fraction: r.standing_fraction, gait: paramsFile ? path.basename(paramsFile, '.json') : 'preset',
   }));
   // Top speed walked: the highest goal up to which every goal walked the whole run without a fall.
   let topWalked = null;
@@ -469,12 +470,13 @@ for (const [character, r] of Object.entries(report.characters)) {
     lines.push(`### Speed sweep (${sw.seconds} s per goal; ${sw.measured.slice(0, 10)}, ${sw.commit})`, '',
       `Top goal walked without a fall (every goal up to it): ${sw.top_without_fall_m_s ?? 'none'} m/s; ` +
       `goals above 0.3 m/s tracked within ±10 %: ${sw.tracked_within_10pct.length ? sw.tracked_within_10pct.join(', ') : 'none'}.`, '',
-      '| goal m/s | fell | speed m/s | heading drift ° | position drift m (2nd half) | duty measured/configured | flight |',
-      '|---|---|---|---|---|---|---|');
+      '| goal m/s | fell | speed m/s | heading drift ° | position drift m (2nd half) | duty measured/configured | flight | stood still |',
+      '|---|---|---|---|---|---|---|---|');
     for (const x of sw.rows) {
       lines.push(`| ${x.goal.toFixed(1)} | ${x.fell ? `at ${x.fall_time_s.toFixed(1)} s` : 'no'} | ${x.fell ? '–' : f2(x.mean_speed_m_s)} | ` +
         `${x.heading_drift_deg.toFixed(1)} | ${f2(x.position_drift_m)} | ` +
-        `${x.duty_factor_measured.map((d, l) => `${d.toFixed(2)}/${x.duty_factor_config[l].toFixed(2)}`).join(' ')} | ${(100 * x.flight_fraction).toFixed(0)} % |`);
+        `${x.duty_factor_measured.map((d, l) => `${d.toFixed(2)}/${x.duty_factor_config[l].toFixed(2)}`).join(' ')} | ${(100 * x.flight_fraction).toFixed(0)} % | ` +
+        `${(100 * (x.standing_fraction ?? 0)).toFixed(0)} % |`);
     }
     lines.push('');
   }

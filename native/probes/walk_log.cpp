@@ -11,7 +11,8 @@
 // and its progress, the lowest sole point's gap to the ground, the foot's pitch (+ = toe up) and
 // roll (degrees, heading frame), the heel's and the toe's gap to the ground, the shin's lean
 // (degrees, + = forward), the foot's distance ahead of and to the left of the leg frame, and the ankle torque about
-// the foot's x axis (N·m, − = toe up). The line ends in FALLEN when walk_trial's criterion fires.
+// the foot's x axis (N·m, − = toe up). The line ends in STANDING while it stands on planted feet
+// (gait/standing.cpp) and in FALLEN when walk_trial's criterion fires.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -80,7 +81,7 @@ int main(int argc, char** argv) {
                   deg(std::atan2(shin.z(), shin.y())), rel.z(), rel.x(), torque.x());
     }
     const bool fallen = sim::hasFallen(sim, 0);
-    std::printf("%s\n", fallen ? " FALLEN" : "");
+    std::printf("%s%s\n", sim.controller(0).standing() ? " STANDING" : "", fallen ? " FALLEN" : "");
     if (fallen) break;
   }
   return 0;

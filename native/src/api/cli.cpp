@@ -317,6 +317,7 @@ int walk(int argc, char** argv) {
       {"push_duration_s", w.pushDuration},
       {"position_drift_m", r.positionDrift},
       {"flight_fraction", r.flightFraction},
+      {"standing_fraction", r.standingFraction},
       {"gait_changes", r.gaitChanges},
       {"controller_us_per_step", r.controllerMicrosPerStep},
       {"seed", w.seed},

@@ -19,20 +19,6 @@ using Eigen::Vector3d;
 
 namespace {
 
-// Orientation whose −y axis points along `down` (a limb hanging from its joint) and whose +z axis
-// is as close as possible to `forward`: the desired orientation of a thigh from the IK direction.
-Quaterniond limbOrientation(const Vector3d& down, const Vector3d& forward) {
-  const Vector3d y = -down.normalized();
-  Vector3d z = forward - forward.dot(y) * y;
-  if (z.squaredNorm() < 1e-12) z = y.unitOrthogonal();
-  z.normalize();
-  Eigen::Matrix3d r;
-  r.col(0) = y.cross(z);
-  r.col(1) = y;
-  r.col(2) = z;
-  return Quaterniond(r);
-}
-
 // Bound of a swing target's rate (rad/s): a step in the target (a new strike point) is not a
 // velocity to follow.
 constexpr double kMaxSwingRate = 20.0;
@@ -229,9 +215,10 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     hold_.setZero();
   }
 
-  // Gait player (§3.1.1): phase, stance/swing, early and late strikes.
+  // Gait player (§3.1.1): phase, stance/swing, early and late strikes; held while standing.
   const double phaseBefore = player_.phase();
   player_.update(dt, s.footContact);
+  updateStand(s, comVelocity);
   // A change of footfall pattern left pending is taken up as the cycle starts again.
   if (transitionPending_ && player_.phase() < phaseBefore) blendAt(std::abs(desiredVelocity_.z()), false, true);
   // P0 of a leg whose first swing starts without a lift-off event: where its foot is now.
@@ -247,6 +234,11 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   const double stanceLoad = weight_ / std::max(1, stanceLegs);  // N per stance leg
 
   if (!m_.spine.empty()) spine(s, torques);
+  if (stand_ == Stand::Planted) {
+    plantedStance(s, torques);
+    finishTorques(s, torques);
+    return;
+  }
 
   // Stance legs per leg frame; swing legs first (§3.1.4–3.1.6), so that what they exert on the
   // leg frames is known when the stance legs are set.

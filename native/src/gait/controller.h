@@ -10,6 +10,7 @@
 #include "gait/gait_player.h"
 #include "gait/params.h"
 #include "gait/speed_keys.h"
+#include "gait/support_polygon.h"
 #include "gait/virtual_force.h"
 
 namespace gaitlab::gait {
@@ -66,6 +67,8 @@ class Controller {
   int gaitChanges() const { return gaitChanges_; }
   double desiredHeading() const { return desiredHeading_; }
   const Eigen::Vector3d& desiredVelocity() const { return desiredVelocity_; }  // heading frame
+  // Standing on planted feet (gait/standing.cpp): every foot down, the gait clock stopped.
+  bool standing() const { return stand_ == Stand::Planted; }
 
  private:
   struct LegGeometry {
@@ -99,6 +102,15 @@ class Controller {
   // Leg frame f's orientation PD (eq. 3.4) and height force F_h (§3.1.4), world.
   Eigen::Vector3d frameOrientationPd(int f, const CharacterState& s, double phase) const;
   Eigen::Vector3d heightForce(int f, const CharacterState& s, double phase) const;
+  // Standing on planted feet (gait/standing.cpp, beyond the thesis). Walking → Settling (goal 0
+  // and slow: the gait player holds every foot that lands) → Planted (every foot down: the
+  // body held in a pose over its feet) → Walking (the goal moves, or the capture point leaves
+  // the support polygon: a step is the only way to catch the body).
+  enum class Stand { Walking, Settling, Planted };
+  void updateStand(const CharacterState& s, const Eigen::Vector3d& comVelocity);
+  void release(const CharacterState& s, int leg);  // stepping again, `leg` first
+  void plantedStance(const CharacterState& s, Eigen::Vector3d* torques);
+  SupportPolygon supportPolygon(const CharacterState& s) const;  // of the stance feet's soles
   // Swing-hip twist scaling and the torque limit, last in every update.
   void finishTorques(const CharacterState& s, Eigen::Vector3d* torques) const;
 
@@ -142,6 +154,11 @@ class Controller {
   bool anchored_ = false;
   Eigen::Vector3d holdIntegral_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hold_ = Eigen::Vector3d::Zero();
+  Stand stand_ = Stand::Walking;
+  int lifted_ = 0;        // steps in a row a planted foot has been off the ground
+  int calm_ = 0;          // steps in a row it has been slow enough to come to a stand
+  double standYaw_ = 0;
+  double standHeight_[kMaxLegFrames] = {0, 0};  // m, each leg frame above the ground as it came to a stand  // the heading it stands facing (set as it comes to a stand)
   Eigen::Vector3d trimmedVelocity() const {
     return desiredVelocity_ + hold_ + Eigen::Vector3d(0, 0, speedTrim_ + speedCorrection_);
   }

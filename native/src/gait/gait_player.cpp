@@ -78,11 +78,44 @@ void GaitPlayer::reset(double phase) {
   }
 }
 
+bool GaitPlayer::planted() const {
+  for (int i = 0; i < legCount_; ++i)
+    if (!legs_[i].stance) return false;
+  return true;
+}
+
+void GaitPlayer::hold() { held_ = true; }
+
+void GaitPlayer::release(int leg, const bool* footContact) {
+  if (!held_) return;
+  held_ = false;
+  if (leg < 0 || leg >= legCount_) leg = 0;
+  // Just before the trigger, so that the next update passes it: ψ wraps, the leg lifts off.
+  phase_ = frac(schedule_[leg].stepTrigger - 1e-9);
+  for (int i = 0; i < legCount_; ++i) {
+    LegGaitState& s = legs_[i];
+    const double duty = schedule_[i].dutyFactor;
+    s.legPhase = legPhase(phase_, schedule_[i].stepTrigger);
+    s.scheduledStance = s.legPhase >= 1.0 - duty;
+    if (footContact != nullptr && !footContact[i] && s.stance) {
+      s.stance = false;  // in the air: swinging, or searching for the ground
+      s.startsInSwing = true;  // the next update reports the lift-off
+    }
+    s.early = s.stance && !s.scheduledStance;
+    updateProgress(s, duty);
+  }
+}
+
 void GaitPlayer::update(double dt, const bool* footContact) {
   if (!(dt > 0.0) || !std::isfinite(dt)) dt = 0.0;
+  // Held (coming to a stand): the clock runs only while a leg is in its scheduled swing.
+  bool swinging = false;
+  for (int i = 0; i < legCount_ && held_; ++i)
+    swinging = swinging || (!legs_[i].stance && !legs_[i].scheduledStance);
+  const double clock = held_ && !swinging ? 0.0 : dt;
   // Algorithm 1 lines 2–6: Φ += dt/T, wrapped. More than a whole cycle per step would hide
   // lift-offs, so the advance is capped just below one cycle.
-  const double dPhase = std::min(dt / period_, 0.999);
+  const double dPhase = std::min(clock / period_, 0.999);
   phase_ = frac(phase_ + dPhase);
 
   for (int i = 0; i < legCount_; ++i) {
@@ -106,7 +139,8 @@ void GaitPlayer::update(double dt, const bool* footContact) {
     // ψ went backwards: the phase passed the step trigger, the scheduled lift-off. Every leg
     // starts a new swing here, whatever it was doing: a stance leg (on time or since an early
     // strike) lifts off; a leg still late after a whole missed stance starts its swing afresh.
-    if (s.legPhase < prevPsi) {
+    // Held, a leg down stays down.
+    if (s.legPhase < prevPsi && !(held_ && s.stance)) {
       s.stance = false;
       s.early = false;
       s.late = false;

@@ -86,6 +86,21 @@ class GaitPlayer {
   // dt/T is capped below one cycle per step.
   void update(double dt, const bool* footContact);
 
+  // Coming to a stand (beyond the thesis; Coros et al. 2010 stop by standing on both feet).
+  // While held, no stance leg lifts off; a swing leg finishes its swing (late strikes
+  // included) and stays down; the phase advances only while some leg is still in its
+  // scheduled swing, so once every foot is down the clock has stopped (planted()).
+  // release(leg) starts the clock again just before `leg`'s step trigger, so that this leg
+  // lifts off first (the stepping leg a recovery chooses) with those its pattern pairs with it;
+  // every other leg down stays down until its own next lift-off, as after an early strike.
+  // Statistics are kept.
+  // A leg whose foot is off the ground (footContact, legCount() entries; nullptr: every foot
+  // down) is not left standing on nothing: it swings, searching for the ground as a late strike.
+  void hold();
+  void release(int leg, const bool* footContact = nullptr);
+  bool held() const { return held_; }
+  bool planted() const;  // every leg in stance
+
   double phase() const { return phase_; }
   double period() const { return period_; }
   int legCount() const { return legCount_; }
@@ -105,6 +120,7 @@ class GaitPlayer {
   int legCount_ = 0;
   double period_ = 2.0;  // s (the original implementation's default, docs/original-implementation.md)
   double phase_ = 0.0;   // Φ in [0, 1)
+  bool held_ = false;    // hold(): no lift-offs, the clock runs only while a leg swings
   LateStrikeParams late_;
   LegSchedule schedule_[kMaxLegs];
   LegGaitState legs_[kMaxLegs];

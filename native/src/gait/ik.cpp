@@ -86,4 +86,16 @@ TwoLinkIk solveTwoLinkIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& targ
   return r;
 }
 
+Eigen::Quaterniond limbOrientation(const Eigen::Vector3d& down, const Eigen::Vector3d& forward) {
+  const Eigen::Vector3d y = -down.normalized();
+  Eigen::Vector3d z = forward - forward.dot(y) * y;
+  if (z.squaredNorm() < 1e-12) z = y.unitOrthogonal();
+  z.normalize();
+  Eigen::Matrix3d r;
+  r.col(0) = y.cross(z);
+  r.col(1) = y;
+  r.col(2) = z;
+  return Eigen::Quaterniond(r);
+}
+
 }  // namespace gaitlab::gait

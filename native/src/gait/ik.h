@@ -26,4 +26,9 @@ struct TwoLinkIk {
 TwoLinkIk solveTwoLinkIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& target, double thigh,
                          double shin, const Eigen::Vector3d& bendDir);
 
+// Orientation whose −y axis points along `down` (a limb hanging from its joint, as every leg
+// segment does at rest) and whose +z axis is as close as possible to `forward`: the desired
+// orientation of a thigh or shin from the IK's directions.
+Eigen::Quaterniond limbOrientation(const Eigen::Vector3d& down, const Eigen::Vector3d& forward);
+
 }  // namespace gaitlab::gait

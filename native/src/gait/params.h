@@ -71,6 +71,10 @@ struct GaitParams {
   // for a second is pulled back within the second, while the error within one stride (the
   // velocity's own swing, a push) moves it little. 0 = no such term (schemas before 5).
   double speedProportionalGain = 0;
+  // Standing (gait/standing.cpp, beyond the thesis): once the goal is 0 and the centre of mass
+  // has moved slower than this (m/s) for half a second, the character stands on planted feet,
+  // stepping only to recover; 0 = it steps in place at goal 0 (schemas before 6).
+  double standSpeed = 0;
   JointGains gains;
   LegFrameParams legFrames[kMaxLegFrames];
   LegParams legs[kMaxLegs];

@@ -160,6 +160,10 @@ void migrateParams(int version, json* params) {
     // (speedProportionalGain; 0 is F_v as before).
     if (!params->contains("speedProportionalGain")) (*params)["speedProportionalGain"] = 0.0;
   }
+  if (version < 6) {
+    // 6: standing on planted feet at goal 0 (standSpeed; 0 steps in place as before).
+    if (!params->contains("standSpeed")) (*params)["standSpeed"] = 0.0;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

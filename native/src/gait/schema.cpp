@@ -79,6 +79,10 @@ Table build(Character c) {
          "speed tracking: F_v also aims this many times the speed error averaged over about a "
          "stride (0.5 s, bounded to 0.1 m/s) above v_d; 0: no such term",
          proto.speedProportionalGain);
+  scalar("standSpeed", kStance, {0, 0.5}, "m/s",
+         "standing: at goal 0, once the body has moved slower than this for half a second, it "
+         "stands on planted feet and steps only to recover; 0: it steps in place",
+         proto.standSpeed);
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

@@ -129,4 +129,13 @@ void Character::setFootContactFlag(int leg, bool* flag) {
   bodies_[morphology_.legs[leg].foot]->setUserPointer(flag);
 }
 
+void Character::holdFeet(bool hold) {
+  for (const body::Leg& leg : morphology_.legs) {
+    btRigidBody* foot = bodies_[leg.foot];
+    const int flags = foot->getCollisionFlags();
+    foot->setCollisionFlags(hold ? flags | btCollisionObject::CF_HAS_FRICTION_ANCHOR
+                                 : flags & ~btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+  }
+}
+
 }  // namespace gaitlab::physics

@@ -44,6 +44,14 @@ class Character {
   // Marks foot `leg`'s body so that contact detection can find its flag (World::updateContacts).
   void setFootContactFlag(int leg, bool* flag);
 
+  // Planted feet hold their place (a character standing still, gait::Controller::standing):
+  // Bullet's friction anchors keep a foot's contact points while their friction stays inside
+  // the friction cone and pull them back to where they touched (positional friction,
+  // btContactSolverInfo::m_frictionERP). Without them a foot under a steady load creeps: a
+  // standing biped slid 5 cm/s with its friction far inside the cone (docs/controller-notes.md,
+  // "Standing on planted feet"). Walking leaves them off, as every gait was tuned.
+  void holdFeet(bool hold);
+
  private:
   World& world_;
   const body::Morphology& morphology_;

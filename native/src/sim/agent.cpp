@@ -32,6 +32,7 @@ void Agent::control() {
   };
   controller.update(physics::kFixedStep, cs, torques.data());
   body->applyJointTorques(torques.data());
+  if (controller.standing() != feetHeld) body->holdFeet(feetHeld = controller.standing());
   ++updates;
 }
 

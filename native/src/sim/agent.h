@@ -39,6 +39,7 @@ struct Agent {
   // its controller no longer runs and its bodies are parked out of the simulation
   // (Simulation::isolateBroken) until a reset rebuilds it at `lastGood`.
   bool broken = false;
+  bool feetHeld = false;  // the body's feet hold their place: the controller stands (holdFeet)
   bool parked = false;
   Eigen::Vector3d lastGood;    // the root leg frame's last finite position
   double lastGoodHeading = 0;  // and heading

@@ -83,7 +83,7 @@ WalkResult runWalk(const WalkOptions& o) {
   const int driftFrom = o.driftWindow > 0
       ? std::max(0, steps - static_cast<int>(std::lround(o.driftWindow / physics::kFixedStep)))
       : half;
-  int flightSteps = 0, secondHalfSteps = 0;
+  int flightSteps = 0, secondHalfSteps = 0, standingSteps = 0, stepsRun = 0;
   std::vector<Eigen::Vector3d> samples;  // the leg frame every 0.1 s, for speed tracking
   const int legs = static_cast<int>(m.legs.size());
   const auto rootState = [&] { return sim.character(0).segmentState(root); };
@@ -147,6 +147,8 @@ WalkResult runWalk(const WalkOptions& o) {
       halfPos = s.position;
       halfUnwrapped = unwrapped;
     }
+    ++stepsRun;
+    if (sim.controller(0).standing()) ++standingSteps;
     if (step + 1 >= half) {
       ++secondHalfSteps;
       bool airborne = true;
@@ -190,6 +192,7 @@ WalkResult runWalk(const WalkOptions& o) {
   const Eigen::Vector3d drift = end.position - (steps > driftFrom ? driftStart : end.position);
   r.positionDrift = std::hypot(drift.x(), drift.z());
   r.flightFraction = secondHalfSteps ? static_cast<double>(flightSteps) / secondHalfSteps : 0.0;
+  r.standingFraction = stepsRun ? static_cast<double>(standingSteps) / stepsRun : 0.0;
   r.gaitChanges = sim.controller(0).gaitChanges();
   if (!o.speedSchedule.empty()) {
     // Samples k at t = 0.1 (k + 1) s: the speed over the window [t − 2, t] (centre t − 1) against

@@ -71,6 +71,8 @@ struct WalkResult {
   double positionDrift = 0;     // m
   // Share of the second half's steps with no foot on the ground (a run's flight phases).
   double flightFraction = 0;
+  // Share of all steps it stood on planted feet, the gait clock stopped (gait::Controller::standing).
+  double standingFraction = 0;
   // Changes of footfall pattern in the run (a gait of walk and trot keys, gait/gait_transition.h).
   int gaitChanges = 0;
   // Speed tracking (a schedule): the speed measured over a 2 s window against the goal at the

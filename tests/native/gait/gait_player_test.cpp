@@ -283,3 +283,64 @@ TEST(GaitPlayer, AShiftedPhaseMovesEveryLegsPhase) {
 }
 
 }  // namespace gaitlab::gait
+
+namespace gaitlab::gait {
+namespace {
+
+// Coming to a stand (GaitPlayer::hold): no stance leg lifts off, a swinging leg finishes its
+// swing and stays down, and the clock stops once every foot is down; release(leg) starts the
+// clock just before that leg's trigger, so it lifts off first.
+TEST(GaitPlayerHold, HeldLegsStayDownAndTheClockStopsOnceAllAreDown) {
+  GaitPlayer g;
+  const LegSchedule legs[2] = {{0.0, 0.4}, {0.5, 0.4}};  // a run: never both feet down
+  g.configure(2, legs, 1.0, 0.1);  // leg 0 swinging (ψ 0.1 < 0.6), leg 1 in stance (ψ 0.6)
+  ASSERT_FALSE(g.leg(0).stance);
+  ASSERT_TRUE(g.leg(1).stance);
+  g.hold();
+  const double dt = 1.0 / 120;
+  const bool down[2] = {true, true};
+  const bool air[2] = {false, true};
+  // Leg 1 reaches its trigger (Φ = 0.5) while leg 0 still swings: it stays down.
+  for (int i = 0; i < 60; ++i) {
+    g.update(dt, air);
+    ASSERT_TRUE(g.leg(1).stance) << "step " << i;
+    ASSERT_FALSE(g.leg(1).events & kLiftOff);
+  }
+  EXPECT_FALSE(g.leg(0).stance);
+  // Leg 0, its swing over and late (still searching for the ground), lands ...
+  for (int i = 0; i < 20 && !g.planted(); ++i) g.update(dt, down);
+  ASSERT_TRUE(g.planted());
+  // ... and from then on the clock stands still, every leg down.
+  const double phase = g.phase();
+  for (int i = 0; i < 240; ++i) {
+    g.update(dt, down);
+    ASSERT_EQ(g.phase(), phase);
+    ASSERT_TRUE(g.planted());
+  }
+  // Released with leg 1 first: leg 1 lifts off at the next update, leg 0 stays down until its
+  // own next lift-off.
+  g.release(1, down);
+  EXPECT_FALSE(g.held());
+  g.update(dt, down);
+  EXPECT_TRUE(g.leg(1).events & kLiftOff);
+  EXPECT_FALSE(g.leg(1).stance);
+  EXPECT_TRUE(g.leg(0).stance);
+  EXPECT_NE(g.phase(), phase);
+}
+
+TEST(GaitPlayerHold, AReleasedFootOffTheGroundSwingsInsteadOfStandingOnNothing) {
+  GaitPlayer g;
+  const LegSchedule legs[2] = {{0.0, 0.6}, {0.5, 0.6}};
+  g.configure(2, legs, 1.0, 0.45);  // both in stance (ψ 0.45 ≥ 0.4 and 0.95)
+  ASSERT_TRUE(g.planted());
+  g.hold();
+  const bool oneUp[2] = {true, false};
+  g.release(0, oneUp);
+  g.update(1.0 / 120, oneUp);
+  EXPECT_TRUE(g.leg(0).events & kLiftOff) << "the leg released first";
+  EXPECT_TRUE(g.leg(1).events & kLiftOff) << "its foot was off the ground";
+  EXPECT_FALSE(g.leg(1).stance);
+}
+
+}  // namespace
+}  // namespace gaitlab::gait

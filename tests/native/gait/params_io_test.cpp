@@ -144,6 +144,27 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
   EXPECT_EQ(migrated.gait.primaryParams().speedIntegralGain, 0.0);
 }
 
+TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
+  // Schema 6 added standing on planted feet (standSpeed); 0 steps in place at goal 0 as every
+  // gait of version 5 did, so a version-5 file loads as itself, keys and all, with it off.
+  json v6 = json::parse(presetText(Character::Biped));
+  ASSERT_TRUE(v6.contains("keys"));
+  json v5 = v6;
+  v5["version"] = 5;
+  v5["params"].erase("standSpeed");
+  for (json& key : v5["keys"]) key["params"].erase("standSpeed");
+  v6["params"]["standSpeed"] = 0.0;
+  for (json& key : v6["keys"]) key["params"]["standSpeed"] = 0.0;
+  GaitFile migrated, current;
+  ASSERT_FALSE(parseGaitFile(v5.dump(), Character::Biped, &migrated));
+  ASSERT_FALSE(parseGaitFile(v6.dump(), Character::Biped, &current));
+  ASSERT_EQ(migrated.gait.keys.size(), current.gait.keys.size());
+  for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
+    EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
+    EXPECT_EQ(migrated.gait.keys[k].params.standSpeed, 0.0);
+  }
+}
+
 TEST(GaitFile, AVersion3FileIsMigrated) {
   // Schema 4 added speed keys beside the parameters: a version-3 file is one key, tuned at 0 m/s,
   // its parameters as they were; keys are refused in it.

@@ -596,7 +596,7 @@ TEST(OptimizeSearch, HeldParametersStayAsTheyStartWhileTheRestIsSearched) {
     o.held = {"stepTrigger", "legFrame.pitch"};
     auto opt = Optimizer::create(o, start);
     const double first = opt->step().bestObjective;
-    for (int g = 1; g < 6; ++g) opt->step();
+    for (int g = 1; g < 8; ++g) opt->step();
     EXPECT_LT(opt->bestObjective(), first);
     const gait::GaitParams& best = opt->best();
     for (int l = 0; l < 2; ++l) EXPECT_EQ(best.legs[l].stepTrigger, start.legs[l].stepTrigger);

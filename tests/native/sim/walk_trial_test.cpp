@@ -13,6 +13,7 @@
 #include "sim/walk_trial.h"
 
 using gaitlab::gait::Character;
+using gaitlab::sim::PushDirection;
 using gaitlab::sim::runWalk;
 using gaitlab::sim::Simulation;
 using gaitlab::sim::WalkOptions;
@@ -341,9 +342,9 @@ TEST(QuadrupedGaits, APinnedGaitIsTakenUpFromAnyPhaseWithoutAFall) {
 }
 
 // The walking benchmark's speed-range criteria, shortened (bench/walking.mjs: the sweep, the ramp
-// and the push ladder). Goal 0: both characters step in place (the biped by the low-speed
-// capture-point placement, controller-notes §13) and hold their spot (the controller's standing
-// hold, §16 and §23): without the hold the biped crept 0.4 m in 20 s and the quadruped 0.7 m.
+// and the push ladder). Goal 0: the biped stands on planted feet (gait/standing.cpp); the
+// quadruped steps in place and holds its spot (the controller's standing hold, §16 and §23):
+// without the hold it crept 0.7 m in 20 s (and the biped, stepping in place, 0.4 m).
 TEST(SpeedRange, BothCharactersHoldTheirSpotAtGoalZero) {
   for (Character c : {Character::Biped, Character::Quadruped}) {
     WalkOptions o;
@@ -354,17 +355,70 @@ TEST(SpeedRange, BothCharactersHoldTheirSpotAtGoalZero) {
     ASSERT_FALSE(r.fell) << characterName(c) << " fell after " << r.fallTime << " s";
     EXPECT_LT(r.meanSpeed, 0.05) << characterName(c);
     EXPECT_LT(r.positionDrift, 0.1) << characterName(c);  // over the second half; measured 0.02-0.03 m
-    // After walking: up to 1 m/s and back to 0, then 14 s standing, the drift counted from the
-    // moment the goal reaches 0. The quadruped's trot creeps at v_d = 0, and the hold's
-    // proportional term alone left it 0.23 m off its spot (the biped 0.10 m); with the integral
-    // term both come back to it (measured 0.016 and 0.019 m).
+    // After walking: up to 1 m/s and back to 0, then 14 s at goal 0. The quadruped steps in
+    // place: its trot creeps at v_d = 0, and the hold's proportional term alone left it 0.23 m
+    // off its spot; with the integral term it comes back to it (measured 0.016-0.018 m, counted
+    // from the moment the goal reaches 0). The biped comes to a stand on planted feet
+    // (gait/standing.cpp) a little beyond that spot (measured 0.16 m, its stopping distance from
+    // the ramp's last speeds) and does not move once it stands (measured 0.000 m over the last
+    // 10 s).
     o.speedSchedule = {{0.0, 0.0}, {8.0, 1.0}, {16.0, 0.0}};
     o.seconds = 30;
     o.driftWindow = 14;
     const auto stopped = runWalk(o);
     ASSERT_FALSE(stopped.fell) << characterName(c) << " fell after " << stopped.fallTime << " s";
-    EXPECT_LT(stopped.positionDrift, 0.05) << characterName(c);
+    if (c == Character::Quadruped) {
+      EXPECT_LT(stopped.positionDrift, 0.05);
+      EXPECT_EQ(stopped.standingFraction, 0.0) << "its gait steps in place (standSpeed 0)";
+    } else {
+      EXPECT_LT(stopped.positionDrift, 0.25) << "stopping distance";
+      EXPECT_GT(stopped.standingFraction, 0.3) << "it stands from about 17 s of 30";
+      o.driftWindow = 10;
+      EXPECT_LT(runWalk(o).positionDrift, 0.01) << "standing, it does not move";
+    }
   }
+}
+
+// Standing on planted feet (gait/standing.cpp): at goal 0 the biped stops stepping and stands,
+// not moving; pushed, it steps to recover and stands again; given a goal, it walks off. Measured:
+// standing 94 % of 20 s (from 0.5 s in), 0.0001 m moved; three pushes of 60 N·s held 0.2 s from
+// each side survived; 1.01 m/s over the 10 s after a step of the goal to 1 m/s.
+TEST(Standing, TheBipedStandsOnPlantedFeetAndStepsOnlyToRecover) {
+  WalkOptions o;
+  o.character = Character::Biped;
+  o.speed = 0.0;
+  o.seconds = 20;
+  const auto quiet = runWalk(o);
+  ASSERT_FALSE(quiet.fell);
+  EXPECT_GT(quiet.standingFraction, 0.9);
+  EXPECT_LT(quiet.positionDrift, 0.01);
+  EXPECT_GT(quiet.dutyMeasured[0], 0.95) << "both feet down";
+  EXPECT_GT(quiet.dutyMeasured[1], 0.95);
+
+  for (const auto& [direction, name] : {std::pair{PushDirection::Lateral, "lateral"},
+                                        std::pair{PushDirection::Forward, "forward"},
+                                        std::pair{PushDirection::Backward, "backward"}}) {
+    WalkOptions pushed = o;
+    pushed.seconds = 14;
+    pushed.pushImpulse = 60;
+    pushed.pushDuration = 0.2;
+    pushed.pushEvery = 4;
+    pushed.seed = 3;
+    pushed.pushDirection = direction;
+    const auto r = runWalk(pushed);
+    EXPECT_FALSE(r.fell) << name;
+    EXPECT_EQ(r.pushesApplied, 3) << name;
+    EXPECT_EQ(r.pushesSurvived, r.pushesApplied) << name;
+    EXPECT_GT(r.standingFraction, 0.03) << name << ": it stands again between pushes";
+  }
+
+  WalkOptions start = o;
+  start.speedSchedule = {{0.0, 0.0}, {5.0, 0.0}, {5.01, 1.0}};
+  start.seconds = 15;
+  const auto walked = runWalk(start);
+  ASSERT_FALSE(walked.fell);
+  EXPECT_GT(walked.standingFraction, 0.2) << "it stood for the first 5 s";
+  EXPECT_NEAR(walked.meanSpeed, 1.0, 0.1) << "then walked off (mean over the second half)";
 }
 
 // The goal ramps up to 1.3 m/s and back to 0: no fall, and the speed follows the goal.
@@ -455,8 +509,13 @@ TEST(SpeedRange, TheBipedTakesSixtyNewtonSecondPushesFromEverySide) {
 // leg frame in one step, a blow, gives less: measured 0.33 m/s where this gives 0.53 m/s, the
 // feet's contacts taking the rest in that step.)
 TEST(WalkTrial, APushHeldOverTimeGivesTheImpulseItNames) {
+  // Stepping in place (standSpeed 0): a biped standing on planted feet holds part of the push
+  // with its ankles and the ground (gait/standing.cpp).
+  gaitlab::gait::Gait stepping = gaitlab::gait::defaultGait(Character::Biped);
+  for (gaitlab::gait::SpeedKey& k : stepping.keys) k.params.standSpeed = 0;
   WalkOptions o;
   o.character = Character::Biped;
+  o.gait = &stepping;
   o.speed = 0.0;
   o.pushImpulse = 30;
   o.pushEvery = 60;  // one push, at 2 s

@@ -15,7 +15,7 @@
 // than kStepSpeed, or a foot has been off the ground for kLiftedTime.
 //
 // How the body is held (docs/controller-notes.md, "Standing on planted feet"):
-// - the legs take one pose: each leg frame upright at the height it came to rest at, moved to
+// - the legs take one pose: each leg frame upright, at the height it came to rest at, moved to
 //   keep the centre of mass over the middle of the feet (a PD on the centre of mass through the
 //   pose, kComGain and kComDamping), each leg solved by the swing's two-link IK from its hip in
 //   that pose to its planted ankle; the knee tracks the IK's flexion, and the ankle, which
@@ -96,8 +96,9 @@ void Controller::updateStand(const CharacterState& s, const Vector3d& comVelocit
       if (!stopped || !player_.planted() || !allDown) return;
       stand_ = Stand::Planted;
       lifted_ = 0;
-      // It stands as high as it came to rest: straightening the legs at once pushed the body off
-      // its feet, which land ahead of it.
+      // It stands as high as it came to rest, in the walk's crouch: a higher stand pushed the
+      // body off its feet, which land ahead of it, and rising to it slowly cost the stand pushes
+      // and box hits (controller-notes §34).
       for (size_t f = 0; f < m_.legFrames.size(); ++f) {
         const BodyState& frame = s.segments[m_.legFrames[f]];
         standHeight_[f] = frame.position.y() - s.ground.at(frame.position.x(), frame.position.z());
@@ -166,7 +167,7 @@ void Controller::plantedStance(const CharacterState& s, Vector3d* torques) {
     const BodyState& frame = s.segments[lf];
     const BodyState& shin = s.segments[leg.lower];
 
-    // The pose: this leg frame upright at its standing height, moved by the centre of mass's
+    // The pose: this leg frame upright at the height it stands at, moved by the centre of mass's
     // correction; the hip where that puts it; the leg from there to its planted ankle.
     Vector3d framePosition = frame.position + shift;
     framePosition.y() = s.ground.at(framePosition.x(), framePosition.z()) + standHeight_[f];

@@ -89,6 +89,7 @@ Controller::Controller(const body::Morphology& morphology, const GaitParams& par
   }
   liftOff_.assign(m_.legs.size(), Vector3d::Zero());
   swingTargets_.assign(m_.legs.size(), SwingTargets());
+  standPose_.assign(m_.segments.size(), Quaterniond::Identity());
   weight_ = m_.totalMass() * -gravity_.y();
   setParams(params);
 }
@@ -235,7 +236,10 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
 
   if (!m_.spine.empty()) spine(s, torques);
   if (stand_ == Stand::Planted) {
-    plantedStance(s, torques);
+    if (m_.legFrames.size() == 1)
+      plantedStance(s, torques);
+    else
+      plantedTable(s, torques);
     finishTorques(s, torques);
     return;
   }

@@ -109,7 +109,8 @@ class Controller {
   enum class Stand { Walking, Settling, Planted };
   void updateStand(const CharacterState& s, const Eigen::Vector3d& comVelocity);
   void release(const CharacterState& s, int leg);  // stepping again, `leg` first
-  void plantedStance(const CharacterState& s, Eigen::Vector3d* torques);
+  void plantedStance(const CharacterState& s, Eigen::Vector3d* torques);  // one leg frame
+  void plantedTable(const CharacterState& s, Eigen::Vector3d* torques);   // several
   SupportPolygon supportPolygon(const CharacterState& s) const;  // of the stance feet's soles
   // Swing-hip twist scaling and the torque limit, last in every update.
   void finishTorques(const CharacterState& s, Eigen::Vector3d* torques) const;
@@ -157,8 +158,11 @@ class Controller {
   Stand stand_ = Stand::Walking;
   int lifted_ = 0;        // steps in a row a planted foot has been off the ground
   int calm_ = 0;          // steps in a row it has been slow enough to come to a stand
-  double standYaw_ = 0;
-  double standHeight_[kMaxLegFrames] = {0, 0};  // m, each leg frame above the ground as it came to a stand  // the heading it stands facing (set as it comes to a stand)
+  double standYaw_ = 0;  // the heading it stands facing (set as it comes to a stand)
+  // Per segment: a leg joint's orientation relative to its parent as it came to a stand (the
+  // table's pose; identity for the other segments).
+  std::vector<Eigen::Quaterniond> standPose_;
+  double standHeight_[kMaxLegFrames] = {0, 0};  // m, each leg frame above the ground as it came to a stand
   Eigen::Vector3d trimmedVelocity() const {
     return desiredVelocity_ + hold_ + Eigen::Vector3d(0, 0, speedTrim_ + speedCorrection_);
   }

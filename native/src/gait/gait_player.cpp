@@ -101,6 +101,12 @@ void GaitPlayer::release(int leg, const bool* footContact) {
       s.stance = false;  // in the air: swinging, or searching for the ground
       s.startsInSwing = true;  // the next update reports the lift-off
     }
+    // A leg whose step trigger lies just before `leg`'s (the trot's diagonal partner, 0.015 of
+    // the cycle earlier) is paired with it: it lifts off now rather than stand a whole cycle.
+    if (s.stance && !s.scheduledStance && s.legPhase < kPairedSwing * (1.0 - duty)) {
+      s.stance = false;
+      s.startsInSwing = true;
+    }
     s.early = s.stance && !s.scheduledStance;
     updateProgress(s, duty);
   }

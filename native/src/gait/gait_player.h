@@ -61,6 +61,12 @@ class GaitPlayer {
   // Duty factors are clamped to this range so both phases have a length (ϕ divides by 1 − D).
   static constexpr double kMinDutyFactor = 0.01;
   static constexpr double kMaxDutyFactor = 0.99;
+  // release(leg): a leg scheduled to swing at the release, and no further into its swing than
+  // this share of it, lifts off with `leg` (its partner in the footfall pattern). Without it the
+  // quadruped's trot released from a stand stepped with one leg, its diagonal partner standing a
+  // cycle more, and a sideways push rolled the body over the feet still down (controller-notes
+  // §36).
+  static constexpr double kPairedSwing = 0.1;
 
   // Sets the legs (at most kMaxLegs; extra legs are ignored) and the period T (s), then reset().
   void configure(int legCount, const LegSchedule* legs, double period, double phase = 0.0);
@@ -91,8 +97,9 @@ class GaitPlayer {
   // included) and stays down; the phase advances only while some leg is still in its
   // scheduled swing, so once every foot is down the clock has stopped (planted()).
   // release(leg) starts the clock again just before `leg`'s step trigger, so that this leg
-  // lifts off first (the stepping leg a recovery chooses) with those its pattern pairs with it;
-  // every other leg down stays down until its own next lift-off, as after an early strike.
+  // lifts off first (the stepping leg a recovery chooses) with those its pattern pairs with it
+  // (their triggers just after `leg`'s, or just before it: kPairedSwing); every other leg down
+  // stays down until its own next lift-off, as after an early strike.
   // Statistics are kept.
   // A leg whose foot is off the ground (footContact, legCount() entries; nullptr: every foot
   // down) is not left standing on nothing: it swings, searching for the ground as a late strike.

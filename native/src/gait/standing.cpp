@@ -14,7 +14,8 @@
 // capture point comes within kStepMargin of the support polygon's edge, the body moves faster
 // than kStepSpeed, or a foot has been off the ground for kLiftedTime.
 //
-// How the body is held (docs/controller-notes.md, "Standing on planted feet"):
+// How a body on one leg frame (the biped) is held (docs/controller-notes.md, "Standing on
+// planted feet"):
 // - the legs take one pose: each leg frame upright, at the height it came to rest at, moved to
 //   keep the centre of mass over the middle of the feet (a PD on the centre of mass through the
 //   pose, kComGain and kComDamping), each leg solved by the swing's two-link IK from its hip in
@@ -28,6 +29,15 @@
 //   (gait/stance_forces.h), delivered through each leg's Jacobian transpose;
 // - the feet hold their place on the ground: the physics gives standing feet friction anchors
 //   (physics::Character::holdFeet), without which they crept 5 cm/s.
+//
+// A body on several leg frames (the quadruped) stands as a table (controller-notes, "The
+// quadruped on a held pose"): its feet already surround the centre of mass, and balancing on
+// its small feet's ankles as the biped does tipped them over. Every leg joint holds the pose it
+// came to rest in, by a joint PD (kTableKp, kTableKd), while the weight, shared among the feet by
+// the whole-body least squares, is fed forward through each leg's Jacobian transpose, so that
+// the PDs only correct. It steps only once the capture point nears the polygon's edge
+// (kTableStepMargin), not because the body moves (kStepSpeed): a table held forward and backward
+// pushes of 30 N·s, which the speed trigger turned into steps that fell.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -58,6 +68,15 @@ constexpr double kLiftedTime = 0.05;  // s: a foot bouncing on landing is still 
 constexpr double kComGain = 4.0;      // the pose moves the body by this × the COM's offset
 constexpr double kComDamping = 0.8;   // s: ... less this × its velocity
 constexpr double kStep = 1.0 / 120;   // s, the controller's fixed step (physics::kFixedStep)
+// The table's joint PD (several leg frames). With the weight fed forward, 300 stood still (100
+// fell, 800 crept 0.5 m in 30 s); damping above about 3 over-corrects the light feet (0.2 kg) and
+// shins (0.6 kg) within a 1/120 s step, and the feet hopped off the ground.
+constexpr double kTableKp = 300.0;  // N·m/rad
+constexpr double kTableKd = 3.0;    // N·m·s/rad
+// The table steps once the capture point is this near the edge. The quadruped's standing key
+// pushed sideways 20 times at 25 and 30 N·s, 12 draws each: runs without a fall 0.02 m: 10 and 8
+// of 12; 0.04: 5 and 9; 0.055: 10 and 9; 0.06: 11 and 10; 0.07: 10 and 9; 0.085: 8 and 9.
+constexpr double kTableStepMargin = 0.06;  // m
 
 Vector2d horizontal(const Vector3d& v) { return Vector2d(v.x(), v.z()); }
 
@@ -106,13 +125,18 @@ void Controller::updateStand(const CharacterState& s, const Vector3d& comVelocit
       // And facing where it stopped: a stand does not turn (the hips' twist turns the feet, which
       // friction holds only weakly about the vertical).
       standYaw_ = headingOf(s.segments[m_.legFrames[0]].orientation);
+      // The table's pose: each leg joint as it came to rest (several leg frames).
+      for (const body::Leg& leg : m_.legs)
+        for (int seg : {leg.upper, leg.lower, leg.foot})
+          standPose_[seg] = s.segments[m_.segments[seg].parent].orientation.conjugate() * s.segments[seg].orientation;
       [[fallthrough]];
     case Stand::Planted: {
       const double h = std::max(0.1, com_.y() - s.ground.at(com_.x(), com_.z()));
       const Vector2d capture = horizontal(com_ + comVelocity * std::sqrt(h / 9.81));
       lifted_ = allDown ? 0 : lifted_ + 1;
-      if (stopped && lifted_ * kStep < kLiftedTime && speed < kStepSpeed &&
-          supportPolygon(s).inside(capture) > kStepMargin)
+      const bool table = m_.legFrames.size() > 1;
+      if (stopped && lifted_ * kStep < kLiftedTime && (table || speed < kStepSpeed) &&
+          supportPolygon(s).inside(capture) > (table ? kTableStepMargin : kStepMargin))
         return;
       // It steps with the foot nearest the capture point: pushed sideways, the foot on that side
       // steps out under the body. A stand that comes to rest on feet too close together to hold
@@ -187,6 +211,28 @@ void Controller::plantedStance(const CharacterState& s, Vector3d* torques) {
     // The foot flat on the ground, so that a foot that starts to tip is pressed back down; and no
     // more ankle torque than the sole can return.
     footPd(l, s, standYaw_, 0.0, k.stanceAnkleKp, k.stanceAnkleKd, torques);
+    limitToSupport(l, s, std::max(0.0, forces[l].y()), torques);
+  }
+}
+
+void Controller::plantedTable(const CharacterState& s, Vector3d* torques) {
+  const int segments = static_cast<int>(m_.segments.size());
+  // The body's weight, shared among the feet, fed forward through each leg.
+  Vector3d points[kMaxStanceFeet], forces[kMaxStanceFeet];
+  const int count = std::min(static_cast<int>(m_.legs.size()), kMaxStanceFeet);
+  for (int l = 0; l < count; ++l) points[l] = jointPivot(m_.legs[l].foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
+  distributeStanceForces(com_, -weight_ / 9.81 * gravity_, Vector3d::Zero(), points, count, StanceForceSettings(),
+                         forces);
+  for (int l = 0; l < count; ++l) {
+    const body::Leg& leg = m_.legs[l];
+    accumulateJointTorques(legChain(l, s), points[l], -forces[l], torques, segments);
+    // Every joint of the leg holds the pose it came to rest in.
+    for (int seg : {leg.upper, leg.lower, leg.foot}) {
+      const BodyState& child = s.segments[seg];
+      const BodyState& parent = s.segments[m_.segments[seg].parent];
+      torques[seg] += jointPd(kTableKp, kTableKd, parent.orientation, child.orientation, standPose_[seg],
+                              parent.angularVelocity, child.angularVelocity);
+    }
     limitToSupport(l, s, std::max(0.0, forces[l].y()), torques);
   }
 }

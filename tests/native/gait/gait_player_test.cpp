@@ -328,6 +328,29 @@ TEST(GaitPlayerHold, HeldLegsStayDownAndTheClockStopsOnceAllAreDown) {
   EXPECT_NE(g.phase(), phase);
 }
 
+// A trot's diagonal pairs have triggers a little apart (the quadruped's 0.556 and 0.571):
+// released with the later one first, the earlier one, scheduled to have just begun its swing,
+// lifts off with it instead of standing a whole cycle more (GaitPlayer::kPairedSwing). A leg
+// further into its scheduled swing stays down until its own next lift-off.
+TEST(GaitPlayerHold, AReleasedLegLiftsOffWithThePartnerWhoseTriggerIsJustBefore) {
+  GaitPlayer g;
+  // Legs 0 and 3 one diagonal pair, 1 and 2 the other (2's trigger 0.015 of the cycle before 1's);
+  // leg 0's swing lasts until 0.55 of its cycle, the others' until 0.3.
+  const LegSchedule legs[4] = {{0.03, 0.45}, {0.57, 0.7}, {0.555, 0.7}, {0.02, 0.7}};
+  g.configure(4, legs, 0.3, 0.9);  // every leg in stance (ψ 0.87, 0.33, 0.345, 0.88)
+  ASSERT_TRUE(g.planted());
+  g.hold();
+  const bool down[4] = {true, true, true, true};
+  g.release(1, down);
+  g.update(1.0 / 120, down);
+  EXPECT_TRUE(g.leg(1).events & kLiftOff) << "the leg released first";
+  EXPECT_TRUE(g.leg(2).events & kLiftOff) << "its partner, 0.015 of the cycle into its swing";
+  EXPECT_FALSE(g.leg(2).stance);
+  EXPECT_TRUE(g.leg(0).stance) << "0.54 into its own cycle: late in a scheduled swing, it waits";
+  EXPECT_TRUE(g.leg(3).stance);
+  EXPECT_FALSE(g.leg(0).events & kLiftOff);
+}
+
 TEST(GaitPlayerHold, AReleasedFootOffTheGroundSwingsInsteadOfStandingOnNothing) {
   GaitPlayer g;
   const LegSchedule legs[2] = {{0.0, 0.6}, {0.5, 0.6}};

@@ -191,7 +191,7 @@ export type SimEvent =
       /** The optimiser's objective settings (gl_opt_settings_json), or null if this build has none. */
       optimizerSchema: string | null;
       /**
-       * The goal speeds each type's preset walks, m/s: from 0 (it stops and steps in place) to
+       * The goal speeds each type's preset walks, m/s: from 0 (it stops and stands) to
        * its fastest speed key (gl_top_speed). The steering sliders span them.
        */
       speedRanges: Record<CharacterType, { min: number; max: number }>;

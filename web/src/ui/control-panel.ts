@@ -170,7 +170,7 @@ export class ControlPanel {
       control.min(min).max(max);
       if (Number(control.getValue()) > max) control.setValue(max);
       if (Number(control.getValue()) < min) control.setValue(min);
-      control.domElement.title = `the goal speeds the ${type}'s gait walks: ${min}–${max} m/s (0 steps in place; the top is its fastest speed key)`;
+      control.domElement.title = `the goal speeds the ${type}'s gait walks: ${min}–${max} m/s (at 0 it stops and stands, or steps in place if its gait's standSpeed is 0; the top is its fastest speed key)`;
       control.updateDisplay();
     }
   }

@@ -31,7 +31,7 @@
 //   (physics::Character::holdFeet), without which they crept 5 cm/s.
 //
 // A body on several leg frames (the quadruped) stands as a table (controller-notes, "The
-// quadruped on a held pose"): its feet already surround the centre of mass, and balancing on
+// quadruped stands as a table"): its feet already surround the centre of mass, and balancing on
 // its small feet's ankles as the biped does tipped them over. Every leg joint holds the pose it
 // came to rest in, by a joint PD (kTableKp, kTableKd), while the weight, shared among the feet by
 // the whole-body least squares, is fed forward through each leg's Jacobian transpose, so that
@@ -68,9 +68,11 @@ constexpr double kLiftedTime = 0.05;  // s: a foot bouncing on landing is still 
 constexpr double kComGain = 4.0;      // the pose moves the body by this × the COM's offset
 constexpr double kComDamping = 0.8;   // s: ... less this × its velocity
 constexpr double kStep = 1.0 / 120;   // s, the controller's fixed step (physics::kFixedStep)
-// The table's joint PD (several leg frames). With the weight fed forward, 300 stood still (100
-// fell, 800 crept 0.5 m in 30 s); damping above about 3 over-corrects the light feet (0.2 kg) and
-// shins (0.6 kg) within a 1/120 s step, and the feet hopped off the ground.
+// The table's joint PD (several leg frames). With the weight fed forward, 100 and 300 stood still
+// and 800 crept 0.48 m in 30 s; of 150 / 300 / 500, 300 fell least to sideways pushes (8 runs
+// each at 20 and 30 N·s, before the standing key was searched: 12 / 8 / 10 falls). Damping above
+// about 3 over-corrects the light feet (0.2 kg) and shins (0.6 kg) within a 1/120 s step, and the
+// feet hopped off the ground.
 constexpr double kTableKp = 300.0;  // N·m/rad
 constexpr double kTableKd = 3.0;    // N·m·s/rad
 // The table steps once the capture point is this near the edge. The quadruped's standing key

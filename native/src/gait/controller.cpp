@@ -236,10 +236,10 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
 
   if (!m_.spine.empty()) spine(s, torques);
   if (stand_ == Stand::Planted) {
-    if (m_.legFrames.size() == 1)
-      plantedStance(s, torques);
-    else
+    if (standsAsTable())
       plantedTable(s, torques);
+    else
+      plantedStance(s, torques);
     finishTorques(s, torques);
     return;
   }

@@ -109,8 +109,14 @@ class Controller {
   enum class Stand { Walking, Settling, Planted };
   void updateStand(const CharacterState& s, const Eigen::Vector3d& comVelocity);
   void release(const CharacterState& s, int leg);  // stepping again, `leg` first
-  void plantedStance(const CharacterState& s, Eigen::Vector3d* torques);  // one leg frame
-  void plantedTable(const CharacterState& s, Eigen::Vector3d* torques);   // several
+  // A body on several leg frames stands as a table (plantedTable), one on a single leg frame
+  // balances on its ankles (plantedStance).
+  bool standsAsTable() const { return m_.legFrames.size() > 1; }
+  void plantedStance(const CharacterState& s, Eigen::Vector3d* torques);
+  void plantedTable(const CharacterState& s, Eigen::Vector3d* torques);
+  // The body's weight as one ground force per foot (every foot, at its sole: points, forces),
+  // by the whole-body least squares (stance_forces.h); returns the number of feet.
+  int shareWeight(const CharacterState& s, Eigen::Vector3d* points, Eigen::Vector3d* forces) const;
   SupportPolygon supportPolygon(const CharacterState& s) const;  // of the stance feet's soles
   // Swing-hip twist scaling and the torque limit, last in every update.
   void finishTorques(const CharacterState& s, Eigen::Vector3d* torques) const;

@@ -136,7 +136,7 @@ void Controller::updateStand(const CharacterState& s, const Vector3d& comVelocit
       const double h = std::max(0.1, com_.y() - s.ground.at(com_.x(), com_.z()));
       const Vector2d capture = horizontal(com_ + comVelocity * std::sqrt(h / 9.81));
       lifted_ = allDown ? 0 : lifted_ + 1;
-      const bool table = m_.legFrames.size() > 1;
+      const bool table = standsAsTable();
       if (stopped && lifted_ * kStep < kLiftedTime && (table || speed < kStepSpeed) &&
           supportPolygon(s).inside(capture) > (table ? kTableStepMargin : kStepMargin))
         return;
@@ -161,6 +161,14 @@ void Controller::release(const CharacterState& s, int leg) {
   calm_ = 0;
 }
 
+int Controller::shareWeight(const CharacterState& s, Vector3d* points, Vector3d* forces) const {
+  const int count = std::min(static_cast<int>(m_.legs.size()), kMaxStanceFeet);
+  for (int l = 0; l < count; ++l) points[l] = jointPivot(m_.legs[l].foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
+  distributeStanceForces(com_, -weight_ / 9.81 * gravity_, Vector3d::Zero(), points, count, StanceForceSettings(),
+                         forces);
+  return count;
+}
+
 void Controller::plantedStance(const CharacterState& s, Vector3d* torques) {
   const int segments = static_cast<int>(m_.segments.size());
   const JointGains& k = params_.gains;
@@ -177,10 +185,7 @@ void Controller::plantedStance(const CharacterState& s, Vector3d* torques) {
 
   // The body's weight, shared among the feet.
   Vector3d points[kMaxStanceFeet], forces[kMaxStanceFeet];
-  const int count = std::min(static_cast<int>(m_.legs.size()), kMaxStanceFeet);
-  for (int l = 0; l < count; ++l) points[l] = jointPivot(m_.legs[l].foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
-  distributeStanceForces(com_, -weight_ / 9.81 * gravity_, Vector3d::Zero(), points, count, StanceForceSettings(),
-                         forces);
+  const int count = shareWeight(s, points, forces);
 
   int legsOfFrame[kMaxLegFrames] = {0, 0};
   for (const body::Leg& leg : m_.legs) ++legsOfFrame[legFrameIndex(leg)];
@@ -221,10 +226,7 @@ void Controller::plantedTable(const CharacterState& s, Vector3d* torques) {
   const int segments = static_cast<int>(m_.segments.size());
   // The body's weight, shared among the feet, fed forward through each leg.
   Vector3d points[kMaxStanceFeet], forces[kMaxStanceFeet];
-  const int count = std::min(static_cast<int>(m_.legs.size()), kMaxStanceFeet);
-  for (int l = 0; l < count; ++l) points[l] = jointPivot(m_.legs[l].foot, s) - Vector3d(0, geometry_[l].ankleHeight, 0);
-  distributeStanceForces(com_, -weight_ / 9.81 * gravity_, Vector3d::Zero(), points, count, StanceForceSettings(),
-                         forces);
+  const int count = shareWeight(s, points, forces);
   for (int l = 0; l < count; ++l) {
     const body::Leg& leg = m_.legs[l];
     accumulateJointTorques(legChain(l, s), points[l], -forces[l], torques, segments);

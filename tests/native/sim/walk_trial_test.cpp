@@ -376,14 +376,14 @@ TEST(SpeedRange, BothCharactersHoldTheirSpotAtGoalZero) {
   }
 }
 
+namespace {
+
 // Standing on planted feet (gait/standing.cpp), as the locomotion criteria ask of each character:
 // at goal 0 it stops stepping and stands, not moving, every foot down; pushed at the criteria's
 // standing impulse (held 0.2 s, three or four 4 s apart, over ten draws of their phases), it
 // steps to recover and stands again; given a goal, it walks off. `atLeast`: runs of the ten that
 // must not fall, lateral / forward / backward; `standsBetween`: the least share of a pushed run
 // spent standing.
-namespace {
-
 struct StandingCase {
   Character character;
   double impulse;  // N·s

@@ -23,8 +23,10 @@
 
 namespace gaitlab::gait {
 
-// Most keys a gait may have (each is a whole parameter set, ~1 kB in a file).
-constexpr int kMaxSpeedKeys = 8;
+// Most keys a gait may have (each is a whole parameter set, ~4 kB in a file, ~1.2 kB in a link).
+// Coros et al. (2011) give their dog six gaits; with a stand and several keys for the trot's
+// speeds a quadruped needs about ten.
+constexpr int kMaxSpeedKeys = 12;
 
 struct SpeedKey {
   double speed = 0;  // m/s, the desired forward speed this parameter set is tuned for

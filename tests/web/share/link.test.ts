@@ -2,6 +2,8 @@
 // problem named — never a crash and never a silently different gait. The gait inside a link is
 // the module's to judge (gl_gait_normalize): here a stand-in normaliser takes its place, and
 // tests/wasm/gait-normalize.test.mjs runs every check of a gait's content against the module.
+import { readFileSync } from 'node:fs';
+
 import { describe, expect, it } from 'vitest';
 import {
   GaitError,
@@ -85,6 +87,33 @@ describe('gait links', () => {
     expect(back.keys).toEqual(gait.keys);
     expect(sameParams(back, gait)).toBe(true);
     expect(sameParams(back, preset)).toBe(false);
+  });
+
+  it('carry the shipped presets, every speed key, and a gait with the most keys a gait may have', async () => {
+    // The shipped files, not the fixture's stand-ins: a quadruped of eight keys once made a link
+    // of 12,818 characters that this page then refused as too long.
+    for (const character of ['biped', 'quadruped'] as const) {
+      const file = JSON.parse(readFileSync(`public/presets/${character}.json`, 'utf8')) as GaitFile;
+      const hash = await encodeGaitHash(file);
+      const back = await decodeGaitHash(hash, passThrough);
+      expect(back.keys, character).toEqual(file.keys);
+      expect(back.speed).toBe(file.speed);
+      expect(sameParams(back, file)).toBe(true);
+    }
+    // Twelve keys (native/src/gait/speed_keys.h, kMaxSpeedKeys), every number as an optimiser
+    // leaves it (17 significant digits, which compress worst).
+    const file = JSON.parse(readFileSync('public/presets/quadruped.json', 'utf8')) as GaitFile;
+    const next = random(3);
+    const jitter = (v: number | number[]): number | number[] => (Array.isArray(v) ? v.map((x) => x * (1 + 1e-3 * next())) : v * (1 + 1e-3 * next()));
+    const keys = Array.from({ length: 11 }, (_, i) => ({
+      speed: 0.1 + 0.4 * i,
+      params: Object.fromEntries(Object.entries(file.params).map(([k, v]) => [k, jitter(v)])),
+    }));
+    const most: GaitFile = { ...file, speed: 4.9, keys };
+    const hash = await encodeGaitHash(most);
+    expect(hash.length).toBeLessThan(MAX_LINK_CHARS);
+    const back = await decodeGaitHash(hash, passThrough);
+    expect(back.keys).toEqual(keys);
   });
 
   it('keep links short', async () => {

@@ -23,11 +23,13 @@ import { jsonLimitProblem, MAX_JSON_BYTES as MAX_GAIT_FILE_BYTES } from '../sim/
 export const LINK_VERSION = 1;
 export const HASH_KEY = 'gait';
 /**
- * Longest link data accepted. A full quadruped gait compresses to about 1–2 kB; browsers and
- * chat clients start to cut links at a few thousand characters, so anything much longer was not
- * made by this page.
+ * Longest link data accepted. A gait of one parameter set compresses to about 1.5 kB (2,000
+ * characters), each further speed key adds about as much, and the most keys a gait may have
+ * (native/src/gait/speed_keys.h, 12) make about 24,000. The data sits in the URL's fragment,
+ * which browsers keep to the page (it is never sent to a server), and Chromium, Firefox and
+ * Safari open fragments far longer than this. Anything longer was not made by this page.
  */
-export const MAX_LINK_CHARS = 8192;
+export const MAX_LINK_CHARS = 32768;
 /**
  * Most bytes the data may inflate to (guards against a small link that inflates to gigabytes):
  * the most a gait file may have (native/src/api/limits.h, web/src/sim/limits.ts).

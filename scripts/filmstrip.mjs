@@ -5,6 +5,8 @@
 //
 //   node scripts/filmstrip.mjs --type biped [--frames 8] [--every 12] [--warmup 480]
 //                              [--speed M_S] [--gait walk|trot|pace] [--out docs/images/biped-gait.png]
+//                              [--patch '{"period": 0.6}']   (an edit of the gait, as the editors make)
+//                              [--params FILE]   (a gait file, given to the page as a link carries one)
 //
 // Needs the WASM build (npm run build) and Chromium (CHROMIUM=/path overrides /usr/bin/chromium).
 import fs from 'node:fs';
@@ -12,6 +14,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
+import zlib from 'node:zlib';
 import { chromium } from 'playwright-core';
 import { startServer } from './serve.mjs';
 
@@ -33,6 +36,8 @@ try {
       warmup: { type: 'string', default: '480' },
       speed: { type: 'string' },
       gait: { type: 'string' },
+      patch: { type: 'string' },
+      params: { type: 'string' },
       out: { type: 'string' },
     },
   }));
@@ -50,6 +55,27 @@ const speed = args.speed === undefined ? null : Number(args.speed);
 if (speed !== null && !(Number.isFinite(speed) && speed >= 0 && speed <= 3)) usage('--speed must be in [0, 3] m/s');
 const out = path.resolve(args.out ?? path.join(repoDir, 'docs', 'images', `${args.type}-gait.png`));
 
+/**
+ * The URL hash that carries gait file `file` as the page's share links do (web/src/share/link.ts,
+ * link version 1: a big-endian CRC-32 of the JSON, then the JSON deflated, in base64url). The page
+ * decodes it and the module judges it, so a gait this gets wrong is refused on the page, not drawn.
+ */
+function gaitHash(file) {
+  const gait = JSON.parse(fs.readFileSync(file, 'utf8'));
+  const { meta, ...carried } = gait;  // links leave "meta" out
+  const text = Buffer.from(JSON.stringify(carried));
+  let c = 0xffffffff;
+  for (const b of text) {
+    c ^= b;
+    for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  }
+  const head = Buffer.alloc(4);
+  head.writeUInt32BE((c ^ 0xffffffff) >>> 0);
+  const data = Buffer.concat([head, zlib.deflateRawSync(text)]).toString('base64url');
+  return `#gait=1.${data.length}.${data}`;
+}
+const hash = args.params ? gaitHash(path.resolve(args.params)) : '';
+
 const server = await startServer({ port: 0, quiet: true });
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'gaitlab-filmstrip-'));
 const context = await chromium.launchPersistentContext(profile, {
@@ -64,7 +90,7 @@ try {
   // The mixed crowd alternates biped, quadruped, …: one character for a biped, two for a
   // quadruped (the other then walks beside it, a grid place away).
   const crowd = args.type === 'biped' ? 1 : 2;
-  await page.goto(`${server.url}?characters=${crowd}&paused=1&threads=1`, { waitUntil: 'load' });
+  await page.goto(`${server.url}?characters=${crowd}&paused=1&threads=1${hash}`, { waitUntil: 'load' });
   await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null,
     { timeout: 120_000, polling: 250 });
   const error = await page.evaluate(() => window.gaitlab.stats().error);
@@ -83,6 +109,18 @@ try {
   const characters = await page.evaluate(() => window.gaitlab.characters());
   const subject = characters.find((c) => c.type === args.type);
   if (!subject) throw new Error(`no ${args.type} in the scene`);
+  if (args.params) {
+    // The page applies a linked gait once the simulation has it; a refused link keeps the presets.
+    const want = JSON.parse(fs.readFileSync(args.params, 'utf8'));
+    const carried = async () => {
+      const g = await page.evaluate((id) => window.gaitlab.getGait(id), subject.id);
+      return g.speed === want.speed && (g.keys ?? []).length === (want.keys ?? []).length &&
+        Object.keys(want.params).every((k) => JSON.stringify(g.params[k]) === JSON.stringify(want.params[k]));
+    };
+    let ok = false;
+    for (let tries = 0; tries < 40 && !(ok = await carried()); ++tries) await page.waitForTimeout(250);
+    if (!ok) throw new Error(`the page did not take ${args.params} (its link was refused, or it is for another character)`);
+  }
   if (speed !== null) await page.evaluate(([id, v]) => window.gaitlab.setGoal(id, { speed: v, turn: 0 }), [subject.id, speed]);
   if (args.gait) {
     // The quadruped's gait menu of the demo (walk, trot or pace: whole tuned gaits).
@@ -91,6 +129,16 @@ try {
     await page.waitForTimeout(1000);
   }
   await page.evaluate((id) => window.gaitlab.select(id), subject.id);
+  if (args.patch) {
+    let patch;
+    try {
+      patch = JSON.parse(args.patch);
+    } catch (error) {
+      usage(`--patch is not JSON: ${error.message}`);
+    }
+    const refused = await page.evaluate((p) => window.gaitlab.editGait(p), patch);
+    if (refused) usage(`--patch refused: ${refused}`);
+  }
   // Only the scene: the panels and the heads-up line would cover the character.
   await page.addStyleTag({ content: 'body > :not(canvas) { visibility: hidden !important; }' });
   await stepBy(warmup);

@@ -566,7 +566,7 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
       return {
         truncated: good.slice(0, good.length - 7),
         corrupt: good.slice(0, flip) + (good[flip] === 'A' ? 'B' : 'A') + good.slice(flip + 1),
-        tooLong: `gait=1.9000.${'A'.repeat(9000)}`,
+        tooLong: `gait=1.${link.MAX_LINK_CHARS + 1000}.${'A'.repeat(link.MAX_LINK_CHARS + 1000)}`,
         unknownVersion: good.replace(/^gait=1\./, 'gait=7.'),
         outOfBounds,
         malformed,

@@ -14,8 +14,8 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
-import zlib from 'node:zlib';
 import { chromium } from 'playwright-core';
+import { runnerImport } from 'vite';
 import { startServer } from './serve.mjs';
 
 const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
@@ -55,26 +55,13 @@ const speed = args.speed === undefined ? null : Number(args.speed);
 if (speed !== null && !(Number.isFinite(speed) && speed >= 0 && speed <= 3)) usage('--speed must be in [0, 3] m/s');
 const out = path.resolve(args.out ?? path.join(repoDir, 'docs', 'images', `${args.type}-gait.png`));
 
-/**
- * The URL hash that carries gait file `file` as the page's share links do (web/src/share/link.ts,
- * link version 1: a big-endian CRC-32 of the JSON, then the JSON deflated, in base64url). The page
- * decodes it and the module judges it, so a gait this gets wrong is refused on the page, not drawn.
- */
-function gaitHash(file) {
-  const gait = JSON.parse(fs.readFileSync(file, 'utf8'));
-  const { meta, ...carried } = gait;  // links leave "meta" out
-  const text = Buffer.from(JSON.stringify(carried));
-  let c = 0xffffffff;
-  for (const b of text) {
-    c ^= b;
-    for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
-  }
-  const head = Buffer.alloc(4);
-  head.writeUInt32BE((c ^ 0xffffffff) >>> 0);
-  const data = Buffer.concat([head, zlib.deflateRawSync(text)]).toString('base64url');
-  return `#gait=1.${data.length}.${data}`;
-}
-const hash = args.params ? gaitHash(path.resolve(args.params)) : '';
+// A gait file reaches the page as a share link carries one, made by the page's own codec
+// (web/src/share/link.ts, loaded through Vite): the page decodes it and the module judges it.
+const webModule = async (file) =>
+  (await runnerImport(path.join(repoDir, 'web', 'src', 'share', file), { configFile: false, logLevel: 'silent' })).module;
+const gaitFile = args.params ? JSON.parse(fs.readFileSync(args.params, 'utf8')) : null;
+const hash = gaitFile ? await (await webModule('link.ts')).encodeGaitHash(gaitFile) : '';
+const sameParams = gaitFile ? (await webModule('gait-file.ts')).sameParams : null;
 
 const server = await startServer({ port: 0, quiet: true });
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'gaitlab-filmstrip-'));
@@ -109,14 +96,9 @@ try {
   const characters = await page.evaluate(() => window.gaitlab.characters());
   const subject = characters.find((c) => c.type === args.type);
   if (!subject) throw new Error(`no ${args.type} in the scene`);
-  if (args.params) {
+  if (gaitFile) {
     // The page applies a linked gait once the simulation has it; a refused link keeps the presets.
-    const want = JSON.parse(fs.readFileSync(args.params, 'utf8'));
-    const carried = async () => {
-      const g = await page.evaluate((id) => window.gaitlab.getGait(id), subject.id);
-      return g.speed === want.speed && (g.keys ?? []).length === (want.keys ?? []).length &&
-        Object.keys(want.params).every((k) => JSON.stringify(g.params[k]) === JSON.stringify(want.params[k]));
-    };
+    const carried = async () => sameParams(await page.evaluate((id) => window.gaitlab.getGait(id), subject.id), gaitFile);
     let ok = false;
     for (let tries = 0; tries < 40 && !(ok = await carried()); ++tries) await page.waitForTimeout(250);
     if (!ok) throw new Error(`the page did not take ${args.params} (its link was refused, or it is for another character)`);

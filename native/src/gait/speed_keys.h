@@ -23,7 +23,7 @@
 
 namespace gaitlab::gait {
 
-// Most keys a gait may have (each is a whole parameter set, ~4 kB in a file, ~1.2 kB in a link).
+// Most keys a gait may have (each is a whole parameter set, ~4 kB in a file, ~1,600 characters in a link).
 // Coros et al. (2011) give their dog six gaits; with a stand and several keys for the trot's
 // speeds a quadruped needs about ten.
 constexpr int kMaxSpeedKeys = 12;

@@ -23,9 +23,10 @@ import { jsonLimitProblem, MAX_JSON_BYTES as MAX_GAIT_FILE_BYTES } from '../sim/
 export const LINK_VERSION = 1;
 export const HASH_KEY = 'gait';
 /**
- * Longest link data accepted. A gait of one parameter set compresses to about 1.5 kB (2,000
- * characters), each further speed key adds about as much, and the most keys a gait may have
- * (native/src/gait/speed_keys.h, 12) make about 24,000. The data sits in the URL's fragment,
+ * Longest link data accepted. A gait of one parameter set makes a link of 1,600 (biped) to
+ * 2,400 (quadruped) characters, each further speed key adds about 1,600 (the shipped quadruped's
+ * eight keys: 12,818), and the most keys a gait may have (native/src/gait/speed_keys.h, 12) about
+ * 20,000. The data sits in the URL's fragment,
  * which browsers keep to the page (it is never sent to a server), and Chromium, Firefox and
  * Safari open fragments far longer than this. Anything longer was not made by this page.
  */

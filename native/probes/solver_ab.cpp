@@ -4,7 +4,11 @@
 // only on request (docs/parallel.md, "Where the physics time goes"):
 //
 //   ninja -C build/native gaitlab_solver_ab
-//   build/native/gaitlab_solver_ab LEGS CHARACTERS STEPS [SHARDS]
+//   build/native/gaitlab_solver_ab LEGS CHARACTERS STEPS [SHARDS] [PART]
+//
+// PART: `sweep` (the default) switches the constraint sweep (physics/solver.h); `rows` switches
+// only the setup of the joints' rows (physics/joint_rows.h), the sweep staying the fast one; `all`
+// switches both.
 //
 // Prints one JSON object: per sweep, the thread CPU time of a whole fixed step (serial: controller
 // and physics), median, 10th and 90th percentile, in ms and in µs per character, the ratio of the
@@ -21,12 +25,17 @@
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr, "usage: gaitlab_solver_ab LEGS(2|4|mixed) CHARACTERS STEPS [SHARDS]\n");
+    std::fprintf(stderr, "usage: gaitlab_solver_ab LEGS(2|4|mixed) CHARACTERS STEPS [SHARDS] [sweep|rows|all]\n");
     return 2;
   }
   const std::string legs = argv[1];
   const int characters = std::atoi(argv[2]), steps = std::atoi(argv[3]);
   const int shards = argc > 4 ? std::atoi(argv[4]) : std::min(gaitlab::sim::kCrowdShards, characters);
+  const std::string part = argc > 5 ? argv[5] : "sweep";
+  if (part != "sweep" && part != "rows" && part != "all") {
+    std::fprintf(stderr, "gaitlab_solver_ab: PART must be sweep, rows or all, not %s\n", part.c_str());
+    return 2;
+  }
   using gaitlab::sim::Crowd;
   const Crowd crowd = gaitlab::probe::crowdOf(legs);
   gaitlab::sim::Simulation sim(1, 1, shards);
@@ -34,14 +43,15 @@ int main(int argc, char** argv) {
   std::vector<double> ms[2];  // [0] Bullet's sweep, [1] the fast one
   for (int s = 0; s < steps; ++s) {
     const bool fast = s % 2 == 1;
-    sim.setFastSolver(fast);
+    sim.setFastSolver(fast || part == "rows");
+    sim.setFastJointRows(fast || part == "sweep");
     const double t0 = gaitlab::probe::threadSeconds();
     sim.step(1);
     const double t1 = gaitlab::probe::threadSeconds();
     if (s >= 20) ms[fast].push_back((t1 - t0) * 1e3);
   }
-  std::printf("{\"legs\": \"%s\", \"characters\": %d, \"steps\": %d, \"shards\": %d,", legs.c_str(),
-              characters, steps, shards);
+  std::printf("{\"legs\": \"%s\", \"characters\": %d, \"steps\": %d, \"shards\": %d, \"part\": \"%s\",",
+              legs.c_str(), characters, steps, shards, part.c_str());
   const char* names[2] = {"bullet", "fast"};
   for (int v = 0; v < 2; ++v) {
     const double p50 = gaitlab::probe::quantile(ms[v], 0.5);

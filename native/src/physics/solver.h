@@ -28,13 +28,14 @@
 // residual is not a number, which makes Bullet's running maximum depend on the order).
 // tests/native/physics/solver_test.cpp checks the results against Bullet's own sweep.
 #pragma once
-#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
+#include "physics/joint_rows.h"
 
 #include <vector>
 
 namespace gaitlab::physics {
 
-class InterleavedSolver : public btSequentialImpulseConstraintSolver {
+// Its setup of the joints' rows is JointRowSolver's (physics/joint_rows.h), also bit for bit Bullet's.
+class InterleavedSolver : public JointRowSolver {
  public:
   // Independent groups whose rows alternate in the sweep.
   static constexpr int kLanes = 4;

@@ -166,6 +166,14 @@ void World::setFastSolver(bool on) {
 #endif
 }
 
+void World::setFastJointRows(bool on) {
+#if !GAITLAB_BULLET_MT
+  static_cast<ReservingSolver*>(solver_.get())->setFastJointRows(on);
+#else
+  (void)on;
+#endif
+}
+
 std::pair<long, long> World::solverBatches() const {
 #if !GAITLAB_BULLET_MT
   const auto& c = static_cast<const ReservingSolver*>(solver_.get())->counts();

@@ -72,6 +72,9 @@ class World {
   // The solver's sweep over the constraint rows: InterleavedSolver's (the default) or Bullet's own.
   // Both compute bit for bit the same (physics/solver.h); this switch is for tests and measurements.
   void setFastSolver(bool on);
+  // The setup of the joints' rows: JointRowSolver's (the default) or Bullet's own convertJoints.
+  // Also bit for bit the same (physics/joint_rows.h); for tests and measurements.
+  void setFastJointRows(bool on);
   // Solver batches so far, and how many the fast sweep solved (the rest fell back to Bullet's).
   std::pair<long, long> solverBatches() const;
 

@@ -79,6 +79,9 @@ class PhysicsShards {
   void setFastSolver(bool on) {
     for (auto& w : worlds_) w->setFastSolver(on);
   }
+  void setFastJointRows(bool on) {
+    for (auto& w : worlds_) w->setFastJointRows(on);
+  }
   std::pair<long, long> solverBatches() const;
 
  private:

@@ -104,6 +104,9 @@ class Simulation {
   // Bullet's own constraint sweep instead of the faster one that computes the same
   // (physics/solver.h), in every shard: for tests and measurements.
   void setFastSolver(bool on) { shards_.setFastSolver(on); }
+  // Bullet's own setup of the joints' rows instead of the faster one that computes the same
+  // (physics/joint_rows.h): for tests and measurements.
+  void setFastJointRows(bool on) { shards_.setFastJointRows(on); }
   // Solver batches so far over every shard, and how many the fast sweep solved.
   std::pair<long, long> solverBatches() const { return shards_.solverBatches(); }
   double groundHeight(double x, double z) const { return shards_.world(0).terrainHeight(x, z); }

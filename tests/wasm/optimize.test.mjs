@@ -89,6 +89,36 @@ test('optimize --hold leaves the held parameters as they were', () => {
   assert.match(file.meta.command, /--hold stepTrigger,front\.pitch/);
 });
 
+test('optimize --step-size and --perturb-probability bound how far a greedy search moves', () => {
+  // Two generations from the preset: the best is at most two moves from where it started, and
+  // every parameter moves with probability 1 by at most the step times its schema range.
+  const schema = JSON.parse(run(native, ['schema', '--character', 'quadruped', '--json']).stdout);
+  const ranges = new Map(schema.characters.quadruped.map((p) => [p.name, p.max - p.min]));
+  const preset = JSON.parse(readFileSync(path.join(root, 'public/presets/quadruped.json'), 'utf8'));
+  const out = path.join(dir, 'small-steps.json');
+  const step = 0.002;
+  const r = run(native, ['optimize', '--character', 'quadruped', '--step-size', String(step), '--perturb-probability', '1',
+    '--generations', '2', '--candidates', '4', '--seconds', '1', '--seed', '2', '--out', out, '--json']);
+  assert.equal(r.status, 0, r.stderr);
+  const s = JSON.parse(r.stdout);
+  assert.ok(s.best_objective < s.start_objective, 'the search found a better candidate, so the best moved');
+  const file = JSON.parse(readFileSync(out, 'utf8'));
+  let moved = 0;
+  for (const [name, value] of Object.entries(file.params)) {
+    const start = preset.params[name];
+    const range = ranges.get(name);
+    assert.ok(range !== undefined, name);
+    const values = Array.isArray(value) ? value.flat() : [value];
+    const starts = Array.isArray(start) ? start.flat() : [start];
+    values.forEach((v, i) => {
+      const d = Math.abs(v - starts[i]);
+      assert.ok(d <= 2 * step * range * (1 + 1e-9) + 1e-12, `${name}: moved ${d}, more than two steps of ${step * range}`);
+      if (d > 0) ++moved;
+    });
+  }
+  assert.ok(moved > 10, `with probability 1 nearly every parameter moves (${moved} did)`);
+});
+
 test('optimize refuses bad options', () => {
   for (const [args, message] of [
     [['optimize', '--generations', '1'], /--out FILE is required/],
@@ -99,6 +129,8 @@ test('optimize refuses bad options', () => {
     [['optimize', '--grounds', 'flat,hill', '--out', '/tmp/x.json'], /--grounds: 'hill' is not flat, slope or bumps/],
     [['optimize', '--grounds', 'slope@down', '--out', '/tmp/x.json'], /--grounds: 'slope@down': the heading after '@' is not a number/],
     [['optimize', '--candidates', '1', '--out', '/tmp/x.json'], /--candidates: 1 is outside/],
+    [['optimize', '--step-size', '0', '--out', '/tmp/x.json'], /--step-size: 0 is outside \[0\.001, 1(\.0)?\]/],
+    [['optimize', '--perturb-probability', 'often', '--out', '/tmp/x.json'], /--perturb-probability: 'often' is not a number/],
     [['optimize', '--hold', 'stepTrigger,bogus', '--out', '/tmp/x.json'], /--hold: 'bogus' is not a parameter of the biped/],
     [['optimize', '--hold', 'stepTrigger,', '--out', '/tmp/x.json'], /--hold: expected NAME,\.\.\. \(an empty name/],
     [['optimize', '--key', '1.2', '--out', '/tmp/x.json'],

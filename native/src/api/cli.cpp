@@ -112,6 +112,12 @@ const char* kOptimizeUsage =
     "                                (frontLeft.stepTrigger) or a field every leg or leg frame\n"
     "                                has (stepTrigger: every leg's), e.g. to keep a footfall pattern\n"
     "  --method greedy|cmaes         greedy stochastic search of §3.3 (default) or CMA-ES\n"
+    "  --step-size F                 how far a candidate moves, as a share of each parameter's\n"
+    "                                range, 0.001 to 1 (default 0.1): greedy moves a parameter by\n"
+    "                                up to this, CMA-ES starts with it as its step size; near a\n"
+    "                                gait's edge of falling, small steps (0.03) find more\n"
+    "  --perturb-probability P       greedy: the chance that each parameter moves, 0.01 to 1\n"
+    "                                (default 0.2, the thesis's: a fifth of them)\n"
     "  --generations N               1 to 1000000 (default 20)\n"
     "  --candidates K                evaluations per generation, 2 to 1000 (default 10)\n"
     "  --seed S                      0 to 4294967295 (default 1): the same seed, the same search\n"
@@ -419,7 +425,8 @@ json termsJson(const optimize::ObjectiveTerms& t) {
 int optimizeCommand(int argc, char** argv) {
   Options o(argc, argv, 2,
             {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
-             "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective", "--key", "--hold"},
+             "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective", "--key", "--hold",
+             "--step-size", "--perturb-probability"},
             {"--json"});
   if (o.help) {
     // The settings come from the table that parses them, so the help cannot leave one out.
@@ -484,8 +491,11 @@ int optimizeCommand(int argc, char** argv) {
       !o.integer("--candidates", optimize::kMinCandidates, optimize::kMaxCandidates, 10, &candidates) ||
       !o.integer("--seed", 0, kMaxSeed, 1, &seed) ||
       !o.integer("--threads", 1, sim::kMaxThreads, sim::defaultThreads(), &threads) ||
-      !o.number("--seconds", 0.5, 120, search.objective.seconds, &search.objective.seconds))
+      !o.number("--seconds", 0.5, 120, search.objective.seconds, &search.objective.seconds) ||
+      !o.number("--step-size", 0.001, 1, search.stepScale, &search.stepScale) ||
+      !o.number("--perturb-probability", 0.01, 1, search.perturbProbability, &search.perturbProbability))
     return api::usageError("optimize", o.error);
+  search.cmaSigma = search.stepScale;  // one step size, as a share of the range, for both methods
   search.candidates = static_cast<int>(candidates);
   search.seed = static_cast<uint64_t>(seed);
   search.threads = static_cast<int>(threads);

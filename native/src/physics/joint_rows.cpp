@@ -6,22 +6,11 @@
 #include <cstddef>
 #include <cstring>
 
+#include "physics/float4.h"
+
 namespace gaitlab::physics {
 
 namespace {
-
-// Four floats, the layout of btVector3 (GCC and Clang vector extension; WebAssembly SIMD).
-typedef float Float4 __attribute__((vector_size(16)));
-static_assert(sizeof(btScalar) == sizeof(float), "the rows are single precision");
-static_assert(sizeof(btVector3) == sizeof(Float4), "btVector3 is four floats");
-
-inline Float4 load(const btVector3& v) {
-  Float4 r;
-  std::memcpy(&r, v.m_floats, sizeof r);
-  return r;
-}
-inline void store(btVector3& v, Float4 r) { std::memcpy(v.m_floats, &r, sizeof r); }
-inline Float4 splat(btScalar s) { return Float4{s, s, s, s}; }
 
 // Clears a row as Bullet's memset does, with 16-byte stores: GCC turns a memset of a row's size
 // into `rep stos`, whose start-up cost made up half of this setup's time (perf, 100 bipeds). A row
@@ -34,12 +23,6 @@ inline void clear(btSolverConstraint& row) {
   ZeroStore* p = reinterpret_cast<ZeroStore*>(&row);
   for (std::size_t k = 0; k < kBlocks; ++k) p[k] = ZeroStore{};
   if (kTail) std::memset(reinterpret_cast<char*>(p + kBlocks), 0, kTail);
-}
-
-// btVector3::dot, non-SIMD Bullet: x*x' + y*y' + z*z', left to right.
-inline btScalar dot(Float4 a, Float4 b) {
-  const Float4 p = a * b;
-  return (p[0] + p[1]) + p[2];
 }
 
 // What the row setup reads of a rigid body, once per joint.
@@ -179,15 +162,15 @@ void JointRowSolver::convertJointRows(btSolverConstraint* rows, btTypedConstrain
     store(row.m_angularComponentA, a.unitFactor ? iMJaA : iMJaA * a.angularFactor);
     store(row.m_angularComponentB, b.unitFactor ? iMJaB : iMJaB * b.angularFactor);
 
-    btScalar sum = dot(n1 * splat(a.invMass), n1);
-    sum += dot(iMJaA, r1);
-    sum += dot(n2 * splat(b.invMass), n2);
-    sum += dot(iMJaB, r2);
+    btScalar sum = dot3(n1 * splat(a.invMass), n1);
+    sum += dot3(iMJaA, r1);
+    sum += dot3(n2 * splat(b.invMass), n2);
+    sum += dot3(iMJaB, r2);
     const btScalar sorRelaxation = 1.f;
     row.m_jacDiagABInv = btFabs(sum) > SIMD_EPSILON ? sorRelaxation / sum : 0.f;
 
-    const btScalar vel1Dotn = dot(n1, a.linear) + dot(r1, a.angular);
-    const btScalar vel2Dotn = dot(n2, b.linear) + dot(r2, b.angular);
+    const btScalar vel1Dotn = dot3(n1, a.linear) + dot3(r1, a.angular);
+    const btScalar vel2Dotn = dot3(n2, b.linear) + dot3(r2, b.angular);
     const btScalar relVel = vel1Dotn + vel2Dotn;
     const btScalar restitution = 0.f;
     const btScalar positionalError = row.m_rhs;  // filled in by getInfo2

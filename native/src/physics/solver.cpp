@@ -10,17 +10,7 @@ namespace gaitlab::physics {
 
 namespace {
 
-using Float4 = InterleavedSolver::Float4;
 using Row = InterleavedSolver::Row;
-
-// btVector3 is four floats, 16-byte aligned (m_floats[4]).
-static_assert(sizeof(btVector3) == sizeof(Float4), "btVector3 is four floats");
-inline Float4 load(const btVector3& v) {
-  Float4 r;
-  std::memcpy(&r, v.m_floats, sizeof r);
-  return r;
-}
-inline void store(btVector3& v, Float4 r) { std::memcpy(v.m_floats, &r, sizeof r); }
 
 // One row: Bullet 3.24's gResolveSingleConstraintRowGeneric_scalar_reference (lowerOnly = false)
 // or gResolveSingleConstraintRowLowerLimit_scalar_reference (true), from
@@ -35,11 +25,8 @@ inline btScalar resolveRow(const Row& r) {
   btScalar deltaImpulse = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
   const Float4 linA = load(bodyA.m_deltaLinearVelocity), angA = load(bodyA.m_deltaAngularVelocity);
   const Float4 linB = load(bodyB.m_deltaLinearVelocity), angB = load(bodyB.m_deltaAngularVelocity);
-  // btVector3::dot is x*x' + y*y' + z*z', left to right.
-  const Float4 p1 = load(c.m_contactNormal1) * linA, q1 = load(c.m_relpos1CrossNormal) * angA;
-  const Float4 p2 = load(c.m_contactNormal2) * linB, q2 = load(c.m_relpos2CrossNormal) * angB;
-  const btScalar deltaVel1Dotn = ((p1[0] + p1[1]) + p1[2]) + ((q1[0] + q1[1]) + q1[2]);
-  const btScalar deltaVel2Dotn = ((p2[0] + p2[1]) + p2[2]) + ((q2[0] + q2[1]) + q2[2]);
+  const btScalar deltaVel1Dotn = dot3(load(c.m_contactNormal1), linA) + dot3(load(c.m_relpos1CrossNormal), angA);
+  const btScalar deltaVel2Dotn = dot3(load(c.m_contactNormal2), linB) + dot3(load(c.m_relpos2CrossNormal), angB);
   deltaImpulse -= deltaVel1Dotn * c.m_jacDiagABInv;
   deltaImpulse -= deltaVel2Dotn * c.m_jacDiagABInv;
 

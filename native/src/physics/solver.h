@@ -28,6 +28,7 @@
 // residual is not a number, which makes Bullet's running maximum depend on the order).
 // tests/native/physics/solver_test.cpp checks the results against Bullet's own sweep.
 #pragma once
+#include "physics/float4.h"
 #include "physics/joint_rows.h"
 
 #include <vector>
@@ -67,8 +68,6 @@ class InterleavedSolver : public JointRowSolver {
                                 btIDebugDraw* debugDrawer) override;
 
  public:
-  // Four floats, the layout of btVector3 (GCC and Clang vector extension; WebAssembly SIMD).
-  typedef float Float4 __attribute__((vector_size(16)));
   enum RowKind : int { kJoint, kContact, kFriction };
   enum RowFlags : int { kWriteA = 1, kWriteB = 2, kUnitA = 4, kUnitB = 8 };
   struct Row {

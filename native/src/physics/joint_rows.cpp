@@ -29,7 +29,6 @@ inline void clear(btSolverConstraint& row) {
 struct Body {
   Float4 column[3];    // the world inverse inertia tensor's columns
   Float4 angularFactor;
-  bool unitFactor;     // angularFactor is exactly (1, 1, 1): multiplying by it changes nothing
   btScalar invMass;
   Float4 linear;       // linear velocity + the step's external force impulse (if any)
   Float4 angular;      // angular velocity + the step's external torque impulse (if any)
@@ -37,9 +36,7 @@ struct Body {
   Body(const btRigidBody& rb, const btSolverBody& solverBody) {
     const btMatrix3x3& m = rb.getInvInertiaTensorWorld();
     for (int j = 0; j < 3; ++j) column[j] = Float4{m[0][j], m[1][j], m[2][j], 0};
-    const btVector3& f = rb.getAngularFactor();
-    angularFactor = load(f);
-    unitFactor = f.x() == 1 && f.y() == 1 && f.z() == 1;
+    angularFactor = load(rb.getAngularFactor());
     invMass = rb.getInvMass();
     // Bullet adds the external impulses only for a solver body that has a rigid body (not the
     // shared static one), and adds zero vectors otherwise: x + 0 is x for every x but -0, and
@@ -159,8 +156,8 @@ void JointRowSolver::convertJointRows(btSolverConstraint* rows, btTypedConstrain
     const Float4 n2 = load(row.m_contactNormal2), r2 = load(row.m_relpos2CrossNormal);
     // Bullet: angularComponent = (I⁻¹ · r) * angularFactor, and I⁻¹ · r again for the mass.
     const Float4 iMJaA = a.inverseInertiaTimes(r1), iMJaB = b.inverseInertiaTimes(r2);
-    store(row.m_angularComponentA, a.unitFactor ? iMJaA : iMJaA * a.angularFactor);
-    store(row.m_angularComponentB, b.unitFactor ? iMJaB : iMJaB * b.angularFactor);
+    store(row.m_angularComponentA, iMJaA * a.angularFactor);
+    store(row.m_angularComponentB, iMJaB * b.angularFactor);
 
     btScalar sum = dot3(n1 * splat(a.invMass), n1);
     sum += dot3(iMJaA, r1);

@@ -17,8 +17,7 @@
 //   no fused multiply-add (docs/parallel.md), so every operation rounds as Bullet's does.
 // - Bullet computes the inverse inertia times the angular Jacobian twice per body (once for the
 //   angular component, once for the effective mass); it is computed once here. The angular
-//   component is that product times the body's angular factor; a factor of exactly 1 leaves it
-//   unchanged.
+//   component is that product times the body's angular factor.
 // - What belongs to a body rather than a row (its velocities plus the step's external impulses,
 //   its inverse mass and inertia) is loaded once per joint, not once per row.
 // - Rows are cleared with fixed-size stores rather than one variable-length memset.

@@ -25,8 +25,10 @@ inline btScalar resolveRow(const Row& r) {
   btScalar deltaImpulse = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
   const Float4 linA = load(bodyA.m_deltaLinearVelocity), angA = load(bodyA.m_deltaAngularVelocity);
   const Float4 linB = load(bodyB.m_deltaLinearVelocity), angB = load(bodyB.m_deltaAngularVelocity);
-  const btScalar deltaVel1Dotn = dot3(load(c.m_contactNormal1), linA) + dot3(load(c.m_relpos1CrossNormal), angA);
-  const btScalar deltaVel2Dotn = dot3(load(c.m_contactNormal2), linB) + dot3(load(c.m_relpos2CrossNormal), angB);
+  const btScalar deltaVel1Dotn =
+      dot3(load(c.m_contactNormal1), linA) + dot3(load(c.m_relpos1CrossNormal), angA);
+  const btScalar deltaVel2Dotn =
+      dot3(load(c.m_contactNormal2), linB) + dot3(load(c.m_relpos2CrossNormal), angB);
   deltaImpulse -= deltaVel1Dotn * c.m_jacDiagABInv;
   deltaImpulse -= deltaVel2Dotn * c.m_jacDiagABInv;
 

@@ -35,15 +35,18 @@ SameAsBulletRun runScene(int shards, int steps, int fast, Switch setFast, Scene 
   return {sim.stateHash(), b.first, b.second};
 }
 
-// The three runs; returns the fast one's, for the caller's own checks.
+// The three runs; returns Bullet's and the fast one's, for the caller's own checks.
+struct SameAsBulletRuns {
+  SameAsBulletRun bullet, fast;
+};
 template <typename Switch, typename Scene>
-SameAsBulletRun expectSameAsBullet(const char* what, int shards, int steps, Switch setFast, Scene scene) {
+SameAsBulletRuns expectSameAsBullet(const char* what, int shards, int steps, Switch setFast, Scene scene) {
   const SameAsBulletRun bullet = runScene(shards, steps, 0, setFast, scene);
   const SameAsBulletRun fast = runScene(shards, steps, 1, setFast, scene);
   const SameAsBulletRun mixed = runScene(shards, steps, 2, setFast, scene);
   EXPECT_EQ(fast.hash, bullet.hash) << what;
   EXPECT_EQ(mixed.hash, bullet.hash) << what << ", switched every step";
-  return fast;
+  return {bullet, fast};
 }
 
 // ---- the scenes ----

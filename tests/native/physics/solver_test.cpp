@@ -24,11 +24,10 @@ const auto fastSweep = [](Simulation& sim, bool on) { sim.setFastSolver(on); };
 // in these scenes needs Bullet's.
 template <typename Scene>
 void expectSameAsBullet(const char* what, int shards, int steps, Scene scene) {
-  const t::SameAsBulletRun bullet = t::runScene(shards, steps, 0, fastSweep, scene);
-  EXPECT_EQ(bullet.fast, 0) << what;
-  EXPECT_GT(bullet.batches, 0) << what;
-  const t::SameAsBulletRun fast = t::expectSameAsBullet(what, shards, steps, fastSweep, scene);
-  EXPECT_EQ(fast.fast, fast.batches) << what;
+  const t::SameAsBulletRuns runs = t::expectSameAsBullet(what, shards, steps, fastSweep, scene);
+  EXPECT_EQ(runs.bullet.fast, 0) << what;
+  EXPECT_GT(runs.bullet.batches, 0) << what;
+  EXPECT_EQ(runs.fast.fast, runs.fast.batches) << what;
 }
 
 }  // namespace

@@ -115,7 +115,7 @@ describe('gl_gait_normalize: the gait in a share link or an imported file', () =
   });
 
   it('refuses a schema version newer than its own, and migrates a schema-1 gait to the current schema', () => {
-    assert.match(normalize(edited((g) => (g.version = 7))).error, /^version: expected 1 to 6, got 7/);
+    assert.match(normalize(edited((g) => (g.version = 8))).error, /^version: expected 1 to 7, got 8/);
     const current = preset(KIND.biped);
     const old = edited((g) => {
       g.version = 1;
@@ -126,7 +126,7 @@ describe('gl_gait_normalize: the gait in a share link or an imported file', () =
     });
     const { gait, error } = normalize(old);
     assert.equal(error, undefined);
-    assert.equal(gait.version, 6);
+    assert.equal(gait.version, 7);
     assert.deepEqual(gait.params, { ...current.params, 'gains.swingTargetRate': 0 });
     assert.equal(gait.keys, undefined);
   });

@@ -24,11 +24,11 @@ namespace {
 constexpr double kMaxSwingRate = 20.0;
 
 // Speed tracking (GaitParams::speedIntegralGain): from this desired speed up (m/s), with the trim
-// bounded (m/s) and fading with this time constant (s) below it. From 0.5 m/s the slow goals
-// were walked fast (the push-robust biped 0.4 m/s at 0.51, the quadruped's trot 0.4 at 0.37);
-// from 0.15 both within 1 % (controller-notes §21). Standing (v_d = 0) is below it.
+// bounded by the key's maxSpeedTrim and fading with this time constant (s) below it. From
+// 0.5 m/s the slow goals were walked fast (the push-robust biped 0.4 m/s at 0.51, the quadruped's
+// trot 0.4 at 0.37); from 0.15 both within 1 % (controller-notes §21). Standing (v_d = 0) is below
+// it.
 constexpr double kSpeedTrackedFrom = 0.15;
-constexpr double kMaxSpeedTrim = 0.5;
 constexpr double kSpeedTrimFade = 0.5;
 // Speed tracking's proportional term (GaitParams::speedProportionalGain): the speed error is
 // averaged by a first-order filter of this time constant (s), about a stride, and the term is
@@ -191,7 +191,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     speedTrim_ *= fade;
     meanSpeedError_ *= fade;
   }
-  speedTrim_ = std::clamp(speedTrim_, -kMaxSpeedTrim, kMaxSpeedTrim);
+  speedTrim_ = std::clamp(speedTrim_, -params_.maxSpeedTrim, params_.maxSpeedTrim);
   speedCorrection_ = std::clamp(params_.speedProportionalGain * meanSpeedError_, -kMaxSpeedCorrection, kMaxSpeedCorrection);
 
   // Standing: once the goal is 0 and the ramp has reached it, hold the spot where the centre of

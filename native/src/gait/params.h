@@ -75,6 +75,10 @@ struct GaitParams {
   // has moved slower than this (m/s) for half a second, the character stands on planted feet,
   // stepping only to recover; 0 = it steps in place at goal 0 (schemas before 6).
   double standSpeed = 0;
+  // Speed tracking's bound on the integral trim (m/s): |trim| ≤ this (schemas before 7 had 0.5
+  // for every gait). The quadruped's canter lags its goal by 0.75–1 m/s with 0.5 and needs more;
+  // a trim of 1.0 unsettled it (docs/controller-notes.md §42).
+  double maxSpeedTrim = 0.5;
   JointGains gains;
   LegFrameParams legFrames[kMaxLegFrames];
   LegParams legs[kMaxLegs];

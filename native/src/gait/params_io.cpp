@@ -164,6 +164,10 @@ void migrateParams(int version, json* params) {
     // 6: standing on planted feet at goal 0 (standSpeed; 0 steps in place as before).
     if (!params->contains("standSpeed")) (*params)["standSpeed"] = 0.0;
   }
+  if (version < 7) {
+    // 7: speed tracking's trim bound per key (maxSpeedTrim; 0.5 m/s is the old constant).
+    if (!params->contains("maxSpeedTrim")) (*params)["maxSpeedTrim"] = 0.5;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

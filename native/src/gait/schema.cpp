@@ -83,6 +83,9 @@ Table build(Character c) {
          "standing: at goal 0, once the body has moved slower than this for half a second, it "
          "stands on planted feet and steps only to recover; 0: it steps in place",
          proto.standSpeed);
+  scalar("maxSpeedTrim", kStance, {0, 2}, "m/s",
+         "speed tracking: bound on the integral trim (speedIntegralGain) F_v aims above v_d",
+         proto.maxSpeedTrim);
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

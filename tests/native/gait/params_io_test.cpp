@@ -151,8 +151,10 @@ TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
   ASSERT_TRUE(v6.contains("keys"));
   json v5 = v6;
   v5["version"] = 5;
-  v5["params"].erase("standSpeed");
-  for (json& key : v5["keys"]) key["params"].erase("standSpeed");
+  for (const char* added : {"standSpeed", "maxSpeedTrim"}) {
+    v5["params"].erase(added);
+    for (json& key : v5["keys"]) key["params"].erase(added);
+  }
   v6["params"]["standSpeed"] = 0.0;
   for (json& key : v6["keys"]) key["params"]["standSpeed"] = 0.0;
   GaitFile migrated, current;
@@ -162,6 +164,28 @@ TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
   for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
     EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
     EXPECT_EQ(migrated.gait.keys[k].params.standSpeed, 0.0);
+  }
+}
+
+TEST(GaitFile, AVersion6FileIsMigratedToTheOldTrimBound) {
+  // Schema 7 made speed tracking's trim bound a parameter of each key (maxSpeedTrim); every gait
+  // before it had 0.5 m/s, so a version-6 file loads with 0.5 in every key and nothing else moved.
+  for (Character c : {Character::Biped, Character::Quadruped}) {
+    json v7 = json::parse(presetText(c));
+    ASSERT_TRUE(v7.contains("keys"));
+    json v6 = v7;
+    v6["version"] = 6;
+    v6["params"].erase("maxSpeedTrim");
+    for (json& key : v6["keys"]) key["params"].erase("maxSpeedTrim");
+    GaitFile migrated, current;
+    ASSERT_FALSE(parseGaitFile(v6.dump(), c, &migrated));
+    ASSERT_FALSE(parseGaitFile(v7.dump(), c, &current));
+    ASSERT_EQ(migrated.gait.keys.size(), current.gait.keys.size());
+    for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
+      EXPECT_EQ(migrated.gait.keys[k].params.maxSpeedTrim, 0.5) << "key " << k;
+      if (current.gait.keys[k].params.maxSpeedTrim == 0.5)
+        EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
+    }
   }
 }
 

@@ -24,10 +24,10 @@ namespace {
 constexpr double kMaxSwingRate = 20.0;
 
 // Speed tracking (GaitParams::speedIntegralGain): from this desired speed up (m/s), with the trim
-// bounded by the key's maxSpeedTrim and fading with this time constant (s) below it. From
-// 0.5 m/s the slow goals were walked fast (the push-robust biped 0.4 m/s at 0.51, the quadruped's
-// trot 0.4 at 0.37); from 0.15 both within 1 % (controller-notes §21). Standing (v_d = 0) is below
-// it.
+// bounded by the key's maxSpeedTrim and fading with this time constant (s) below it. Tracked from
+// 0.5 m/s, the slow goals were walked fast (the push-robust biped 0.4 m/s at 0.51, the
+// quadruped's trot 0.4 at 0.37); from 0.15, both within 1 % (controller-notes §21). Standing
+// (v_d = 0) is below it.
 constexpr double kSpeedTrackedFrom = 0.15;
 constexpr double kSpeedTrimFade = 0.5;
 // Speed tracking's proportional term (GaitParams::speedProportionalGain): the speed error is

@@ -3,7 +3,8 @@
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
-//                          [--only criteria,sweep,ramp,pushes,boxes,starts,transitions,switches] [--jobs 2]
+//                          [--only criteria,sweep,ramp,pushes,boxes,starts,transitions,switches,skills]
+//                          [--jobs 2]
 //                          [--step 0.1]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
@@ -39,6 +40,13 @@
 //     of gait (the quadruped's walk and trot, gait/gait_transition.h; the biped's walk and run,
 //     keys of one footfall pattern that blend) and from standing: how many runs fall, and how many
 //     changes of footfall pattern the runs made;
+//   - skills: the gaits the locomotion criteria name, read from the sweep by each goal's footfall
+//     pattern (`footfall` in `gaitlab walk --json`, native/src/gait/footfall.h: a walk when every
+//     foot is down more than half the cycle, Alexander 1984; a quadruped's running gaits by the
+//     feet that lift off together, Hildebrand 1965, 1977): standing at goal 0; the biped's walk
+//     from 0.2 to 1.6 m/s (no flight) and its run at 2.5 m/s or more (a flight phase); the
+//     quadruped's walk, its trot to 2.5 m/s, a canter or gallop with a flight phase at 3.5 m/s or
+//     more, and its pace (the pace file at the criteria's two speeds); and getting up after a fall;
 //   - switches (the quadruped): a gait pinned in mid-stride, as the demo's gait menu pins one
 //     (`gaitlab walk --gait-schedule`): from each of the walk, trot and pace files to each other
 //     at the demo's quadruped speed (0.4 m/s), 50 switches per pair at times spread over 1 s (more
@@ -70,7 +78,7 @@ const opt = (name, fallback) => {
 const seconds = Number(opt('seconds', '60'));
 const jobs = Math.max(1, Number(opt('jobs', '2')));
 const sweepStep = Number(opt('step', '0.1'));
-const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes', 'starts', 'transitions', 'switches'];
+const SECTIONS = ['criteria', 'sweep', 'ramp', 'pushes', 'boxes', 'starts', 'transitions', 'switches', 'skills'];
 const only = opt('only', SECTIONS.join(',')).split(',');
 for (const s of only) {
   if (!SECTIONS.includes(s)) {
@@ -88,12 +96,13 @@ if (!existsSync(cli)) {
 
 // Goal speeds per character, one twice the other, and turn commands: a 0.49 m tall dog walks
 // slower than a 1.8 m human (similar Froude numbers, v²/(g·leg length) ≈ 0.05–0.15).
-// `top`: the top of the speed range the locomotion criteria ask of each (run 2.5 m/s for the
-// biped, trot 2.5 m/s for the quadruped); the sweep goes 0.4 m/s beyond it. `cruise`: the speed
+// `top`: the top of the speed range the ramp climbs to (run 2.5 m/s for the biped, trot 2.5 m/s
+// for the quadruped). `sweepTo`: the sweep's last goal, beyond the fastest gait the criteria name
+// (the biped's run at 2.5 m/s, the quadruped's canter or gallop at 3.5 m/s). `cruise`: the speed
 // of the walking push trials.
 const GOALS = {
-  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }, { speed: 1.0, turn: 0.5 }, { speed: 1.0, turn: -0.5 }], top: 2.5, cruise: 0.5 },
-  quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }], top: 2.5, cruise: 0.4 },
+  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }, { speed: 1.0, turn: 0.5 }, { speed: 1.0, turn: -0.5 }], top: 2.5, sweepTo: 2.9, cruise: 0.5 },
+  quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }], top: 2.5, sweepTo: 4.5, cruise: 0.4 },
 };
 const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 50, 60, 70, 80];  // N·s at the leg frame
 // How long a push lasts, s: held 0.2 s (a push, as the literature measures it), or 0 (one step).
@@ -236,16 +245,17 @@ async function measureCriteria(character) {
 
 // The speed sweep: one run per goal speed.
 async function measureSweep(character) {
-  const { top } = GOALS[character];
+  const { sweepTo } = GOALS[character];
   const goals = [];
-  for (let k = 0; k * sweepStep <= top + 0.4 + 1e-9; k++) goals.push(Math.round(k * sweepStep * 100) / 100);
+  for (let k = 0; k * sweepStep <= sweepTo + 1e-9; k++) goals.push(Math.round(k * sweepStep * 100) / 100);
   process.stderr.write(`${character}: sweep over ${goals.length} goal speeds, ${seconds} s each\n`);
   const runs = await Promise.all(goals.map((goal) => walkAsync(character, ['--speed', goal, '--seconds', seconds])));
   const rows = runs.map((r, i) => ({
     goal: goals[i], fell: r.fell, fall_time_s: r.fall_time_s, mean_speed_m_s: r.mean_speed_m_s,
     heading_drift_deg: r.heading_drift_deg, position_drift_m: r.position_drift_m,
     duty_factor_measured: r.duty_factor_measured, duty_factor_config: r.duty_factor_config,
-    flight_fraction: r.flight_fraction, standing_fraction: r.standing_fraction, gait: paramsFile ? path.basename(paramsFile, '.json') : 'preset',
+    flight_fraction: r.flight_fraction, standing_fraction: r.standing_fraction, footfall: r.footfall,
+    gait: paramsFile ? path.basename(paramsFile, '.json') : 'preset',
   }));
   // Top speed walked: the highest goal up to which every goal walked the whole run without a fall.
   let topWalked = null;
@@ -422,6 +432,82 @@ async function measureSwitches(character) {
   return { ...stamp, speed: SWITCH_SPEED, seconds_after: SWITCH_AFTER, rows };
 }
 
+// The gaits the locomotion criteria name. Most are read from the sweep's rows (each goal walked
+// for --seconds from the preset's start, its footfall pattern named by `gaitlab walk`); the pace
+// is a file of its own (the demo's gait menu pins it), walked at the criteria's two speeds.
+const WALK_RANGE = [0.2, 1.6];   // m/s, the biped's walk
+const RUN_FROM = 2.5;            // m/s, the biped's run
+const TROT_TO = 2.5;             // m/s, the quadruped's trot
+const GALLOP_FROM = 3.5;         // m/s, the quadruped's canter or gallop
+const FLIGHT = 0.02;             // a flight phase: no foot down at least 2 % of the time
+const STAND_SHARE = 0.9;         // standing: on planted feet at least 90 % of the time at goal 0
+async function measureSkills(character) {
+  if (character !== 'quadruped') return { ...stamp };
+  const pace = path.join(root, 'public/presets', SWITCH_GAITS.pace);
+  process.stderr.write(`${character}: the pace at ${GOALS[character].speeds.join(' and ')} m/s\n`);
+  const runs = await Promise.all(GOALS[character].speeds.map((speed) => walkAsync(character, ['--speed', speed, '--seconds', seconds], pace)));
+  return { ...stamp, pace: runs.map((x, i) => ({ goal: GOALS[character].speeds[i], fell: x.fell, fall_time_s: x.fall_time_s,
+    mean_speed_m_s: x.mean_speed_m_s, footfall: x.footfall, flight_fraction: x.flight_fraction })) };
+}
+
+// The skill checks, from the sweep and the skills section's own runs.
+function skillChecks(character, sweep, skills) {
+  const within = (x, share) => !x.fell && Math.abs(x.mean_speed_m_s - x.goal) <= share * x.goal;
+  // Goals as runs of consecutive sweep steps: "0.4–1.2, 1.4–2.6 m/s".
+  const range = (goals) => {
+    if (!goals.length) return 'none';
+    const runs = [[goals[0], goals[0]]];
+    for (const g of goals.slice(1)) {
+      if (g - runs.at(-1)[1] <= sweep.step + 1e-9) runs.at(-1)[1] = g; else runs.push([g, g]);
+    }
+    return `${runs.map(([a, b]) => (a === b ? a.toFixed(1) : `${a.toFixed(1)}–${b.toFixed(1)}`)).join(', ')} m/s`;
+  };
+  const pct = (f) => `${(100 * f).toFixed(0)} %`;
+  const rows = sweep.rows;
+  const checks = [];
+  const stand = rows.find((x) => x.goal === 0);
+  checks.push({ what: `stands at goal 0 (on planted feet ≥ ${100 * STAND_SHARE} % of the time, no fall)`,
+    ok: !!stand && !stand.fell && stand.standing_fraction >= STAND_SHARE,
+    value: stand ? (stand.fell ? `fell at ${stand.fall_time_s.toFixed(1)} s` : `${pct(stand.standing_fraction)} on planted feet`) : 'not in the sweep' });
+  if (character === 'biped') {
+    const walkRows = rows.filter((x) => x.goal >= WALK_RANGE[0] - 1e-9 && x.goal <= WALK_RANGE[1] + 1e-9);
+    const walks = (x) => within(x, 0.1) && x.footfall === 'walk' && x.flight_fraction < FLIGHT && Math.min(...x.duty_factor_measured) > 0.5;
+    const bad = walkRows.filter((x) => !walks(x));
+    const duty = walkRows.flatMap((x) => x.duty_factor_measured), flight = walkRows.map((x) => x.flight_fraction);
+    checks.push({ what: `walks from ${WALK_RANGE[0]} to ${WALK_RANGE[1]} m/s: every foot down more than half the cycle, no flight (< ${pct(FLIGHT)}), speed within ±10 %`,
+      ok: walkRows.length > 0 && bad.length === 0,
+      value: `${bad.length ? `not a walk at ${bad.map((x) => x.goal.toFixed(1)).join(', ')} m/s (footfall ${[...new Set(bad.map((x) => x.footfall))].join(', ')})` : 'a walk at every goal'}; ` +
+        `duty factors ${Math.min(...duty).toFixed(2)}–${Math.max(...duty).toFixed(2)}, flight ${pct(Math.min(...flight))}–${pct(Math.max(...flight))}` });
+    const runs = rows.filter((x) => x.goal >= RUN_FROM - 1e-9 && within(x, 0.1) && x.footfall === 'run' && x.flight_fraction >= FLIGHT);
+    checks.push({ what: `runs at ${RUN_FROM} m/s or more: a run's footfall with a flight phase (≥ ${pct(FLIGHT)}), speed within ±10 %`,
+      ok: runs.length > 0,
+      value: runs.length ? `runs at ${range(runs.map((x) => x.goal))} (flight ${runs.map((x) => pct(x.flight_fraction)).join(', ')})` : 'no goal from 2.5 m/s is run within ±10 % with a flight phase' });
+  } else {
+    const walks = rows.filter((x) => x.goal > 0 && within(x, 0.15) && x.footfall === 'walk');
+    checks.push({ what: 'walks: a walk\'s footfall (every foot down more than half the cycle), speed within ±15 %',
+      ok: walks.length > 0, value: walks.length ? `walks at ${range(walks.map((x) => x.goal))}` : 'no goal is walked' });
+    const at = rows.find((x) => Math.abs(x.goal - TROT_TO) < 1e-9);
+    const trots = rows.filter((x) => x.goal > 0.3 && within(x, 0.1) && x.footfall === 'trot');
+    checks.push({ what: `trots up to ${TROT_TO} m/s or more: a trot's footfall, speed within ±10 %`,
+      ok: !!at && within(at, 0.1) && at.footfall === 'trot',
+      value: `trots within ±10 % at ${range(trots.map((x) => x.goal))}` + (at ? `; at ${TROT_TO}: ${at.fell ? 'fell' : `${at.mean_speed_m_s.toFixed(2)} m/s, ${at.footfall}`}` : '') });
+    const fast = rows.filter((x) => x.goal >= GALLOP_FROM - 1e-9);
+    const gallops = fast.filter((x) => within(x, 0.1) && ['canter', 'gallop'].includes(x.footfall) && x.flight_fraction >= FLIGHT);
+    const seen = fast.filter((x) => !x.fell);
+    checks.push({ what: `canters or gallops at ${GALLOP_FROM} m/s or more: that footfall with a flight phase (≥ ${pct(FLIGHT)}), speed within ±10 %`,
+      ok: gallops.length > 0,
+      value: gallops.length ? `at ${range(gallops.map((x) => x.goal))}`
+        : `none: goals ${GALLOP_FROM}–${fast.at(-1)?.goal.toFixed(1)} m/s ` +
+          (seen.length ? `walked ${seen.map((x) => `${x.mean_speed_m_s.toFixed(2)} (${x.footfall})`).join(', ')}` : 'all fell') });
+    const pace = skills?.pace ?? [];
+    checks.push({ what: `paces (${SWITCH_GAITS.pace} at ${GOALS.quadruped.speeds.join(' and ')} m/s for ${seconds} s): a pace's footfall, no fall, speed within ±15 %`,
+      ok: pace.length > 0 && pace.every((x) => within(x, 0.15) && x.footfall === 'pace'),
+      value: pace.map((x) => `${x.goal}: ${x.fell ? `fell at ${x.fall_time_s.toFixed(1)} s` : `${x.mean_speed_m_s.toFixed(2)} m/s, ${x.footfall}`}`).join('; ') || 'not measured' });
+  }
+  checks.push({ what: 'gets up by itself after a fall', ok: false, value: 'not built: a fallen character lies where it fell until it is reset' });
+  return checks;
+}
+
 for (const character of characters) {
   const r = (report.characters[character] ??= {});
   const measured = await Promise.all([
@@ -433,8 +519,11 @@ for (const character of characters) {
     only.includes('starts') ? measureStarts(character) : null,
     only.includes('transitions') ? measureTransitions(character) : null,
     only.includes('switches') ? measureSwitches(character) : null,
+    only.includes('skills') ? measureSkills(character) : null,
   ]);
   SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
+  // The skills read the sweep: checked again whenever either was measured.
+  if (r.skills && r.sweep && (only.includes('skills') || only.includes('sweep'))) r.skills.checks = skillChecks(character, r.sweep, r.skills);
   // Results of the previous layout (criteria at the top level) are not carried on.
   for (const old of ['straight', 'turns', 'terrain', 'robustness', 'largest_push_survived_90pct_n_s', 'checks', 'controller_us_per_step', 'all_met']) delete r[old];
   if (Array.isArray(r.pushes)) delete r.pushes;
@@ -470,14 +559,21 @@ for (const [character, r] of Object.entries(report.characters)) {
     lines.push(`### Speed sweep (${sw.seconds} s per goal; ${sw.measured.slice(0, 10)}, ${sw.commit})`, '',
       `Top goal walked without a fall (every goal up to it): ${sw.top_without_fall_m_s ?? 'none'} m/s; ` +
       `goals above 0.3 m/s tracked within ±10 %: ${sw.tracked_within_10pct.length ? sw.tracked_within_10pct.join(', ') : 'none'}.`, '',
-      '| goal m/s | fell | speed m/s | heading drift ° | position drift m (2nd half) | duty measured/configured | flight | stood still |',
-      '|---|---|---|---|---|---|---|---|');
+      '| goal m/s | fell | speed m/s | footfall | heading drift ° | position drift m (2nd half) | duty measured/configured | flight | stood still |',
+      '|---|---|---|---|---|---|---|---|---|');
     for (const x of sw.rows) {
-      lines.push(`| ${x.goal.toFixed(1)} | ${x.fell ? `at ${x.fall_time_s.toFixed(1)} s` : 'no'} | ${x.fell ? '–' : f2(x.mean_speed_m_s)} | ` +
+      lines.push(`| ${x.goal.toFixed(1)} | ${x.fell ? `at ${x.fall_time_s.toFixed(1)} s` : 'no'} | ${x.fell ? '–' : f2(x.mean_speed_m_s)} | ${x.footfall ?? '–'} | ` +
         `${x.heading_drift_deg.toFixed(1)} | ${f2(x.position_drift_m)} | ` +
         `${x.duty_factor_measured.map((d, l) => `${d.toFixed(2)}/${x.duty_factor_config[l].toFixed(2)}`).join(' ')} | ${(100 * x.flight_fraction).toFixed(0)} % | ` +
         `${(100 * (x.standing_fraction ?? 0)).toFixed(0)} % |`);
     }
+    lines.push('');
+  }
+  const sk = r.skills;
+  if (sk?.checks) {
+    lines.push(`### Locomotion skills: ${sk.checks.every((k) => k.ok) ? 'every skill shown' : 'skills not all shown'} (from the sweep of ${sw?.measured.slice(0, 10) ?? '–'}; ${sk.measured.slice(0, 10)}, ${sk.commit})`, '',
+      '| skill | met | measured |', '|---|---|---|');
+    for (const k of sk.checks) lines.push(`| ${k.what} | ${k.ok ? 'yes' : '**no**'} | ${k.value} |`);
     lines.push('');
   }
   const rp = r.ramp;

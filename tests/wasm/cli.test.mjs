@@ -17,7 +17,7 @@ function run(cmd, args) {
 
 const walkArgs = ['walk', '--character', 'quadruped', '--seconds', '1', '--speed', '0.8', '--json'];
 const keys = ['fell', 'fall_time_s', 'distance_m', 'mean_speed_m_s', 'goal_speed_m_s',
-  'heading_drift_deg', 'yaw_rate_rad_s', 'duty_factor_measured', 'duty_factor_config',
+  'heading_drift_deg', 'yaw_rate_rad_s', 'duty_factor_measured', 'duty_factor_config', 'footfall',
   'pushes_applied', 'pushes_survived', 'controller_us_per_step'];
 
 test('native and WASM `walk` print the same JSON document shape', () => {
@@ -34,6 +34,9 @@ test('native and WASM `walk` print the same JSON document shape', () => {
   assert.deepEqual(Object.keys(ja).sort(), Object.keys(jb).sort());
   assert.equal(ja.goal_speed_m_s, 0.8);
   assert.equal(ja.duty_factor_config.length, 4, 'a quadruped has four legs');
+  // The preset at 0.8 m/s trots (native/src/gait/footfall.h), in both builds.
+  assert.equal(ja.footfall, 'trot');
+  assert.equal(jb.footfall, 'trot');
   assert.ok(ja.controller_us_per_step > 0 && jb.controller_us_per_step > 0);
 });
 

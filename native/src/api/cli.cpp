@@ -316,6 +316,7 @@ int walk(int argc, char** argv) {
       {"start_heading_rad", w.heading},
       {"duty_factor_measured", r.dutyMeasured},
       {"duty_factor_config", r.dutyConfig},
+      {"footfall", gait::footfallName(r.footfall)},
       {"pushes_applied", r.pushesApplied},
       {"pushes_survived", r.pushesSurvived},
       {"push_impulse_n_s", w.pushImpulse},

@@ -225,6 +225,9 @@ WalkResult runWalk(const WalkOptions& o) {
     r.dutyMeasured.push_back(player.measuredDutyFactor(l));
     r.dutyConfig.push_back(player.schedule(l).dutyFactor);
   }
+  gait::LegSchedule schedules[gait::GaitPlayer::kMaxLegs];
+  for (int l = 0; l < player.legCount() && l < gait::GaitPlayer::kMaxLegs; ++l) schedules[l] = player.schedule(l);
+  r.footfall = gait::classifyFootfall(sim.character(0).morphology(), schedules);
   const int taken = static_cast<int>(std::lround(elapsed / physics::kFixedStep));
   r.controllerMicrosPerStep = taken ? (sim.controllerSeconds() - controller0) * 1e6 / taken : 0;
   r.stateHash = sim.stateHash();

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "gait/footfall.h"
 #include "gait/params.h"
 #include "gait/speed_keys.h"
 #include "sim/simulation.h"
@@ -66,6 +67,9 @@ struct WalkResult {
   double headingDrift = 0;      // degrees: |final heading − start heading − turnRate·t|
   double yawRate = 0;           // rad/s, mean over the second half
   std::vector<double> dutyMeasured, dutyConfig;
+  // The footfall pattern of the gait in effect at the end (gait/footfall.h): its configured step
+  // triggers and duty factors, named.
+  gait::Footfall footfall = gait::Footfall::Unknown;
   int pushesApplied = 0, pushesSurvived = 0;
   // Horizontal displacement of the leg frame over the drift window (standing: how far it crept).
   double positionDrift = 0;     // m

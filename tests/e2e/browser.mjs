@@ -43,6 +43,11 @@ export async function startBrowser({ viewport, ...contextOptions }) {
       '--disable-sync',
     ],
   });
+  // Every action and wait on every page (a click, a fill, a locator's wait) gets the same
+  // generous bound rather than Playwright's 30 s: a click on a button of a page that renders at
+  // 2 frames a second, beside a search and the rest of the suite on the same 2 cores, timed out
+  // at 30 s once, and passed alone.
+  context.setDefaultTimeout(PAGE_TIMEOUT);
   return {
     server,
     context,

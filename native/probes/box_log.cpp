@@ -11,11 +11,11 @@
 // any leg frame from upright (degrees), and then `stood` or the walking criteria's reason for
 // the fall (`tilt`: a leg frame more than 60° from upright, `low`: below half its standing
 // height) with the seconds from the touch, and `air`: the seconds of the first 0.4 s after the
-// touch in which no foot was within 2 cm of the trial's flat ground (the blow took the character off its
-// feet: a foot swept from under it). The throws are the trial's own: the same draws in the
-// same order (sim::throwBox), so the falls add up to `gaitlab walk --box-hits HITS --seed SEED`.
-// Last, the falls per body part aimed at, and among the hits that took it off its feet for
-// kOffItsFeet or more.
+// touch in which no foot was within 2 cm of the trial's flat ground (the blow took the character
+// off its feet: a foot swept from under it). The throws are the trial's own: the same draws in
+// the same order (sim::throwBox), so the falls add up to `gaitlab walk --box-hits HITS --seed
+// SEED`. Last, the falls per body part aimed at, and among the hits that took it off its feet
+// for kOffItsFeet or more.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

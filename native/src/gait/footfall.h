@@ -5,7 +5,8 @@
 //
 // The duty factor β (the share of the cycle a foot is down) separates walking from running
 // (Alexander 1984: walking gaits have β > 1/2, running gaits β < 1/2). A quadruped's running
-// gaits are named by which feet strike together (Hildebrand 1965, 1977):
+// gaits are named by the feet that lift off together, and so strike together at equal duty
+// factors (Hildebrand 1965, 1977, who times the strikes):
 //  * trot: the diagonal pairs (front left with back right, front right with back left);
 //  * pace: the lateral pairs (front left with back left, right with right);
 //  * bound: the front pair and the back pair; pronk: all four at once;

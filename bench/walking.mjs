@@ -67,6 +67,7 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { skillChecks } from './lib/skills.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const cli = path.join(root, 'build/native/gaitlab');
@@ -432,15 +433,9 @@ async function measureSwitches(character) {
   return { ...stamp, speed: SWITCH_SPEED, seconds_after: SWITCH_AFTER, rows };
 }
 
-// The gaits the locomotion criteria name. Most are read from the sweep's rows (each goal walked
-// for --seconds from the preset's start, its footfall pattern named by `gaitlab walk`); the pace
-// is a file of its own (the demo's gait menu pins it), walked at the criteria's two speeds.
-const WALK_RANGE = [0.2, 1.6];   // m/s, the biped's walk
-const RUN_FROM = 2.5;            // m/s, the biped's run
-const TROT_TO = 2.5;             // m/s, the quadruped's trot
-const GALLOP_FROM = 3.5;         // m/s, the quadruped's canter or gallop
-const FLIGHT = 0.02;             // a flight phase: no foot down at least 2 % of the time
-const STAND_SHARE = 0.9;         // standing: on planted feet at least 90 % of the time at goal 0
+// The gaits the locomotion criteria name (bench/lib/skills.mjs reads them from the sweep); the
+// pace is a file of its own (the demo's gait menu pins it), walked here at the criteria's two
+// speeds.
 async function measureSkills(character) {
   if (character !== 'quadruped') return { ...stamp };
   const pace = path.join(root, 'public/presets', SWITCH_GAITS.pace);
@@ -448,64 +443,6 @@ async function measureSkills(character) {
   const runs = await Promise.all(GOALS[character].speeds.map((speed) => walkAsync(character, ['--speed', speed, '--seconds', seconds], pace)));
   return { ...stamp, pace: runs.map((x, i) => ({ goal: GOALS[character].speeds[i], fell: x.fell, fall_time_s: x.fall_time_s,
     mean_speed_m_s: x.mean_speed_m_s, footfall: x.footfall, flight_fraction: x.flight_fraction })) };
-}
-
-// The skill checks, from the sweep and the skills section's own runs.
-function skillChecks(character, sweep, skills) {
-  const within = (x, share) => !x.fell && Math.abs(x.mean_speed_m_s - x.goal) <= share * x.goal;
-  // Goals as runs of consecutive sweep steps: "0.4–1.2, 1.4–2.6 m/s".
-  const range = (goals) => {
-    if (!goals.length) return 'none';
-    const runs = [[goals[0], goals[0]]];
-    for (const g of goals.slice(1)) {
-      if (g - runs.at(-1)[1] <= sweep.step + 1e-9) runs.at(-1)[1] = g; else runs.push([g, g]);
-    }
-    return `${runs.map(([a, b]) => (a === b ? a.toFixed(1) : `${a.toFixed(1)}–${b.toFixed(1)}`)).join(', ')} m/s`;
-  };
-  const pct = (f) => `${(100 * f).toFixed(0)} %`;
-  const rows = sweep.rows;
-  const checks = [];
-  const stand = rows.find((x) => x.goal === 0);
-  checks.push({ what: `stands at goal 0 (on planted feet ≥ ${100 * STAND_SHARE} % of the time, no fall)`,
-    ok: !!stand && !stand.fell && stand.standing_fraction >= STAND_SHARE,
-    value: stand ? (stand.fell ? `fell at ${stand.fall_time_s.toFixed(1)} s` : `${pct(stand.standing_fraction)} on planted feet`) : 'not in the sweep' });
-  if (character === 'biped') {
-    const walkRows = rows.filter((x) => x.goal >= WALK_RANGE[0] - 1e-9 && x.goal <= WALK_RANGE[1] + 1e-9);
-    const walks = (x) => within(x, 0.1) && x.footfall === 'walk' && x.flight_fraction < FLIGHT && Math.min(...x.duty_factor_measured) > 0.5;
-    const bad = walkRows.filter((x) => !walks(x));
-    const duty = walkRows.flatMap((x) => x.duty_factor_measured), flight = walkRows.map((x) => x.flight_fraction);
-    checks.push({ what: `walks from ${WALK_RANGE[0]} to ${WALK_RANGE[1]} m/s: every foot down more than half the cycle, no flight (< ${pct(FLIGHT)}), speed within ±10 %`,
-      ok: walkRows.length > 0 && bad.length === 0,
-      value: `${bad.length ? `not a walk at ${bad.map((x) => x.goal.toFixed(1)).join(', ')} m/s (footfall ${[...new Set(bad.map((x) => x.footfall))].join(', ')})` : 'a walk at every goal'}; ` +
-        `duty factors ${Math.min(...duty).toFixed(2)}–${Math.max(...duty).toFixed(2)}, flight ${pct(Math.min(...flight))}–${pct(Math.max(...flight))}` });
-    const runs = rows.filter((x) => x.goal >= RUN_FROM - 1e-9 && within(x, 0.1) && x.footfall === 'run' && x.flight_fraction >= FLIGHT);
-    checks.push({ what: `runs at ${RUN_FROM} m/s or more: a run's footfall with a flight phase (≥ ${pct(FLIGHT)}), speed within ±10 %`,
-      ok: runs.length > 0,
-      value: runs.length ? `runs at ${range(runs.map((x) => x.goal))} (flight ${runs.map((x) => pct(x.flight_fraction)).join(', ')})` : 'no goal from 2.5 m/s is run within ±10 % with a flight phase' });
-  } else {
-    const walks = rows.filter((x) => x.goal > 0 && within(x, 0.15) && x.footfall === 'walk');
-    checks.push({ what: 'walks: a walk\'s footfall (every foot down more than half the cycle), speed within ±15 %',
-      ok: walks.length > 0, value: walks.length ? `walks at ${range(walks.map((x) => x.goal))}` : 'no goal is walked' });
-    const at = rows.find((x) => Math.abs(x.goal - TROT_TO) < 1e-9);
-    const trots = rows.filter((x) => x.goal > 0.3 && within(x, 0.1) && x.footfall === 'trot');
-    checks.push({ what: `trots up to ${TROT_TO} m/s or more: a trot's footfall, speed within ±10 %`,
-      ok: !!at && within(at, 0.1) && at.footfall === 'trot',
-      value: `trots within ±10 % at ${range(trots.map((x) => x.goal))}` + (at ? `; at ${TROT_TO}: ${at.fell ? 'fell' : `${at.mean_speed_m_s.toFixed(2)} m/s, ${at.footfall}`}` : '') });
-    const fast = rows.filter((x) => x.goal >= GALLOP_FROM - 1e-9);
-    const gallops = fast.filter((x) => within(x, 0.1) && ['canter', 'gallop'].includes(x.footfall) && x.flight_fraction >= FLIGHT);
-    const seen = fast.filter((x) => !x.fell);
-    checks.push({ what: `canters or gallops at ${GALLOP_FROM} m/s or more: that footfall with a flight phase (≥ ${pct(FLIGHT)}), speed within ±10 %`,
-      ok: gallops.length > 0,
-      value: gallops.length ? `at ${range(gallops.map((x) => x.goal))}`
-        : `none: goals ${GALLOP_FROM}–${fast.at(-1)?.goal.toFixed(1)} m/s ` +
-          (seen.length ? `walked ${seen.map((x) => `${x.mean_speed_m_s.toFixed(2)} (${x.footfall})`).join(', ')}` : 'all fell') });
-    const pace = skills?.pace ?? [];
-    checks.push({ what: `paces (${SWITCH_GAITS.pace} at ${GOALS.quadruped.speeds.join(' and ')} m/s for ${seconds} s): a pace's footfall, no fall, speed within ±15 %`,
-      ok: pace.length > 0 && pace.every((x) => within(x, 0.15) && x.footfall === 'pace'),
-      value: pace.map((x) => `${x.goal}: ${x.fell ? `fell at ${x.fall_time_s.toFixed(1)} s` : `${x.mean_speed_m_s.toFixed(2)} m/s, ${x.footfall}`}`).join('; ') || 'not measured' });
-  }
-  checks.push({ what: 'gets up by itself after a fall', ok: false, value: 'not built: a fallen character lies where it fell until it is reset' });
-  return checks;
 }
 
 for (const character of characters) {
@@ -523,7 +460,9 @@ for (const character of characters) {
   ]);
   SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
   // The skills read the sweep: checked again whenever either was measured.
-  if (r.skills && r.sweep && (only.includes('skills') || only.includes('sweep'))) r.skills.checks = skillChecks(character, r.sweep, r.skills);
+  if (r.skills && r.sweep && (only.includes('skills') || only.includes('sweep'))) {
+    r.skills.checks = skillChecks(character, r.sweep, r.skills, { seconds, paceFile: SWITCH_GAITS.pace, paceSpeeds: GOALS.quadruped.speeds });
+  }
   // Results of the previous layout (criteria at the top level) are not carried on.
   for (const old of ['straight', 'turns', 'terrain', 'robustness', 'largest_push_survived_90pct_n_s', 'checks', 'controller_us_per_step', 'all_met']) delete r[old];
   if (Array.isArray(r.pushes)) delete r.pushes;

@@ -51,7 +51,7 @@ export function skillChecks(character, sweep, skills, { seconds, paceFile, paceS
     const runs = rows.filter((x) => x.goal >= RUN_FROM - 1e-9 && within(x, 0.1) && x.footfall === 'run' && x.flight_fraction >= FLIGHT);
     checks.push({ what: `runs at ${RUN_FROM} m/s or more: a run's footfall with a flight phase (≥ ${pct(FLIGHT)}), speed within ±10 %`,
       ok: runs.length > 0,
-      value: runs.length ? `runs at ${range(runs.map((x) => x.goal))} (flight ${runs.map((x) => pct(x.flight_fraction)).join(', ')})` : 'no goal from 2.5 m/s is run within ±10 % with a flight phase' });
+      value: runs.length ? `runs at ${range(runs.map((x) => x.goal))} (flight ${runs.map((x) => pct(x.flight_fraction)).join(', ')})` : `no goal from ${RUN_FROM} m/s is run within ±10 % with a flight phase` });
   } else {
     const walks = rows.filter((x) => x.goal > 0 && within(x, 0.15) && x.footfall === 'walk');
     checks.push({ what: 'walks: a walk\'s footfall (every foot down more than half the cycle), speed within ±15 %',

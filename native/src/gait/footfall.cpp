@@ -1,20 +1,15 @@
 #include "gait/footfall.h"
 
-#include <cmath>
-
 namespace gaitlab::gait {
 
 namespace {
 
-// How far apart two lift-offs are on the gait cycle, in [0, 0.5] cycles.
-double apart(double a, double b) { return std::abs(std::remainder(a - b, 1.0)); }
-
 bool together(const LegSchedule& a, const LegSchedule& b) {
-  return apart(a.stepTrigger, b.stepTrigger) <= kFootfallTogether;
+  return cyclicDistance(a.stepTrigger, b.stepTrigger) <= kFootfallTogether;
 }
 
 bool halfACycleApart(const LegSchedule& a, const LegSchedule& b) {
-  return apart(a.stepTrigger, b.stepTrigger) >= 0.5 - kFootfallTogether;
+  return cyclicDistance(a.stepTrigger, b.stepTrigger) >= 0.5 - kFootfallTogether;
 }
 
 }  // namespace

@@ -9,10 +9,9 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-// Distance between two phases on the unit circle, in [0, 0.5].
-double cyclicDistance(double a, double b) { return std::abs(std::remainder(a - b, 1.0)); }
-
 }  // namespace
+
+double cyclicDistance(double a, double b) { return std::abs(std::remainder(a - b, 1.0)); }
 
 bool footfallDiffers(const LegParams* a, const LegParams* b, int legs) {
   for (int i = 1; i < std::min(legs, kMaxLegs); ++i) {

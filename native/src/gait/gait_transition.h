@@ -30,6 +30,9 @@ namespace gaitlab::gait {
 // quarter; the trot's own keys, tuned apart, by under a tenth).
 constexpr double kFootfallTolerance = 0.15;
 
+// How far apart two gait phases are on the cycle, in [0, 0.5] cycles (0.95 and 0.02: 0.07).
+double cyclicDistance(double a, double b);
+
 // Whether leg schedules `a` and `b` (`legs` legs each) differ in footfall pattern, as above.
 bool footfallDiffers(const LegParams* a, const LegParams* b, int legs);
 

@@ -53,11 +53,18 @@ TEST(ParamsCApi, SetsOneCharacterAndReadsItBack) {
   EXPECT_EQ(parse(gl_sim_get_params(sim, quadruped))["character"], "quadruped");
   EXPECT_EQ(gl_sim_get_params(sim, box), nullptr);
 
-  // What get_params returns is a gait file that loads back to the controller's exact values.
+  // What get_params returns is a gait file that loads back to the controller's exact gait: every
+  // speed key, bit for bit (the parameters in effect are blended from them by the desired speed).
   sim::Simulation* s = &api::simulationOf(sim);
   gait::GaitFile file;
   ASSERT_FALSE(gait::parseGaitFile(gl_sim_get_params(sim, biped), gait::Character::Biped, &file));
-  EXPECT_EQ(std::memcmp(&file.gait.primaryParams(), &s->controller(0).params(), sizeof(gait::GaitParams)), 0);
+  const gait::Gait& held = s->controller(0).gait();
+  ASSERT_EQ(file.gait.keys.size(), held.keys.size());
+  EXPECT_EQ(file.gait.primary, held.primary);
+  for (size_t k = 0; k < held.keys.size(); ++k) {
+    EXPECT_EQ(file.gait.keys[k].speed, held.keys[k].speed) << "key " << k;
+    EXPECT_EQ(std::memcmp(&file.gait.keys[k].params, &held.keys[k].params, sizeof(gait::GaitParams)), 0) << "key " << k;
+  }
   gl_sim_destroy(sim);
 }
 

@@ -69,9 +69,9 @@ TEST(Footfall, EveryFootDownMoreThanHalfTheCycleIsAWalk) {
 }
 
 // The gait files: the quadruped's walk, trot (every key, the 2.7 m/s key's uneven rhythm
-// included) and pace, the canter keys of the research gait, and the biped's two gaits. The
-// shipped biped's keys are a run by duty factor (0.41 / 0.36), which is why the walk with double
-// support exists (docs/controller-notes.md).
+// included) and pace, the canter keys of the research gait, and the biped's two gaits: the preset,
+// a walk with double support, and the jog it replaced, whose keys are a run by duty factor
+// (0.41 / 0.36) at every speed (docs/controller-notes.md).
 TEST(Footfall, TheGaitFilesAreTheGaitsTheyAreNamedFor) {
   using V = std::vector<std::string>;
   EXPECT_EQ(keysOf("public/presets/quadruped-walk.json", Character::Quadruped), V{"walk"});
@@ -84,9 +84,7 @@ TEST(Footfall, TheGaitFilesAreTheGaitsTheyAreNamedFor) {
   // The research canter: the preset's keys, a bridge at 2.8 m/s, the canter at 3.0 and 4.0.
   EXPECT_EQ(keysOf("bench/gaits/quadruped-canter-trim.json", Character::Quadruped),
             (V{"trot", "trot", "walk", "trot", "trot", "trot", "trot", "trot", "trot", "canter", "canter"}));
-  EXPECT_EQ(keysOf("public/presets/biped.json", Character::Biped), (V{"run", "run"}));
-  // The walk with double support (0, 0.15, 0.5, 1.4, 1.8, 2.5 m/s): the preset's standing key,
-  // the walk, the run at 2.5.
-  EXPECT_EQ(keysOf("bench/gaits/biped-walk-double-support.json", Character::Biped),
-            (V{"run", "walk", "walk", "walk", "walk", "run"}));
+  // The preset (0, 0.15, 0.5, 1.4, 1.8, 2.5 m/s): the standing key, the walk, the run at 2.5.
+  EXPECT_EQ(keysOf("public/presets/biped.json", Character::Biped), (V{"run", "walk", "walk", "walk", "walk", "run"}));
+  EXPECT_EQ(keysOf("bench/gaits/biped-jog.json", Character::Biped), (V{"run", "run"}));
 }

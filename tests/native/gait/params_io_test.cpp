@@ -155,8 +155,11 @@ TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
     v5["params"].erase(added);
     for (json& key : v5["keys"]) key["params"].erase(added);
   }
+  // ... and the trim bound of schema 7 at 0.5 m/s, the constant before it (the preset's keys may
+  // have searched theirs).
   v6["params"]["standSpeed"] = 0.0;
-  for (json& key : v6["keys"]) key["params"]["standSpeed"] = 0.0;
+  v6["params"]["maxSpeedTrim"] = 0.5;
+  for (json& key : v6["keys"]) key["params"]["standSpeed"] = 0.0, key["params"]["maxSpeedTrim"] = 0.5;
   GaitFile migrated, current;
   ASSERT_FALSE(parseGaitFile(v5.dump(), Character::Biped, &migrated));
   ASSERT_FALSE(parseGaitFile(v6.dump(), Character::Biped, &current));

@@ -79,6 +79,11 @@ struct GaitParams {
   // for every gait). The quadruped's canter lags its goal by 0.75–1 m/s with 0.5 and needs more;
   // a trim of 1.0 unsettled it (docs/controller-notes.md §42).
   double maxSpeedTrim = 0.5;
+  // Speed tracking acts from this desired speed up (m/s); below it the trim fades and the
+  // low-speed capture-point placement governs (schemas before 8 had 0.15 for every gait).
+  // Standing (v_d = 0) is always below it. The biped's walk with double support steps at about
+  // 0.45 m/s unless the trim slows it, and needs it down to 0.05 (docs/controller-notes.md §48).
+  double speedTrackedFrom = 0.15;
   JointGains gains;
   LegFrameParams legFrames[kMaxLegFrames];
   LegParams legs[kMaxLegs];

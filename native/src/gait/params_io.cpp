@@ -168,6 +168,10 @@ void migrateParams(int version, json* params) {
     // 7: speed tracking's trim bound per key (maxSpeedTrim; 0.5 m/s is the old constant).
     if (!params->contains("maxSpeedTrim")) (*params)["maxSpeedTrim"] = 0.5;
   }
+  if (version < 8) {
+    // 8: where speed tracking starts, per key (speedTrackedFrom; 0.15 m/s is the old constant).
+    if (!params->contains("speedTrackedFrom")) (*params)["speedTrackedFrom"] = 0.15;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

@@ -86,6 +86,10 @@ Table build(Character c) {
   scalar("maxSpeedTrim", kStance, {0, 2}, "m/s",
          "speed tracking: bound on the integral trim (speedIntegralGain) F_v aims above v_d",
          proto.maxSpeedTrim);
+  scalar("speedTrackedFrom", kStance, {0.01, 1}, "m/s",
+         "speed tracking: the desired speed from which the trim integrates the speed error; below "
+         "it the trim fades and the capture-point placement governs",
+         proto.speedTrackedFrom);
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

@@ -92,6 +92,6 @@ void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi);
 // character.
 std::string schemaJson(std::optional<Character> only = std::nullopt);
 
-constexpr int kSchemaVersion = 7;
+constexpr int kSchemaVersion = 8;
 
 }  // namespace gaitlab::gait

@@ -151,15 +151,17 @@ TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
   ASSERT_TRUE(v6.contains("keys"));
   json v5 = v6;
   v5["version"] = 5;
-  for (const char* added : {"standSpeed", "maxSpeedTrim"}) {
+  for (const char* added : {"standSpeed", "maxSpeedTrim", "speedTrackedFrom"}) {
     v5["params"].erase(added);
     for (json& key : v5["keys"]) key["params"].erase(added);
   }
-  // ... and the trim bound of schema 7 at 0.5 m/s, the constant before it (the preset's keys may
-  // have searched theirs).
+  // ... and the trim bound of schema 7 and where tracking starts of schema 8 at 0.5 and 0.15 m/s,
+  // the constants before them (the preset's keys may have their own).
   v6["params"]["standSpeed"] = 0.0;
   v6["params"]["maxSpeedTrim"] = 0.5;
-  for (json& key : v6["keys"]) key["params"]["standSpeed"] = 0.0, key["params"]["maxSpeedTrim"] = 0.5;
+  v6["params"]["speedTrackedFrom"] = 0.15;
+  for (json& key : v6["keys"])
+    key["params"]["standSpeed"] = 0.0, key["params"]["maxSpeedTrim"] = 0.5, key["params"]["speedTrackedFrom"] = 0.15;
   GaitFile migrated, current;
   ASSERT_FALSE(parseGaitFile(v5.dump(), Character::Biped, &migrated));
   ASSERT_FALSE(parseGaitFile(v6.dump(), Character::Biped, &current));
@@ -178,16 +180,44 @@ TEST(GaitFile, AVersion6FileIsMigratedToTheOldTrimBound) {
     ASSERT_TRUE(v7.contains("keys"));
     json v6 = v7;
     v6["version"] = 6;
-    v6["params"].erase("maxSpeedTrim");
-    for (json& key : v6["keys"]) key["params"].erase("maxSpeedTrim");
+    for (const char* added : {"maxSpeedTrim", "speedTrackedFrom"}) {
+      v6["params"].erase(added);
+      for (json& key : v6["keys"]) key["params"].erase(added);
+    }
     v7["params"]["maxSpeedTrim"] = 0.5;
-    for (json& key : v7["keys"]) key["params"]["maxSpeedTrim"] = 0.5;
+    v7["params"]["speedTrackedFrom"] = 0.15;
+    for (json& key : v7["keys"]) key["params"]["maxSpeedTrim"] = 0.5, key["params"]["speedTrackedFrom"] = 0.15;
     GaitFile migrated, current;
     ASSERT_FALSE(parseGaitFile(v6.dump(), c, &migrated));
     ASSERT_FALSE(parseGaitFile(v7.dump(), c, &current));
     ASSERT_EQ(migrated.gait.keys.size(), current.gait.keys.size());
     for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
       EXPECT_EQ(migrated.gait.keys[k].params.maxSpeedTrim, 0.5) << "key " << k;
+      EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
+    }
+  }
+}
+
+TEST(GaitFile, AVersion7FileIsMigratedToTrackingFromTheOldSpeed) {
+  // Schema 8 made the desired speed from which speed tracking acts a parameter of each key
+  // (speedTrackedFrom); every gait before it had 0.15 m/s, so a version-7 file loads with 0.15 in
+  // every key and nothing else moved, and it walks as it did: the quadruped preset, tracked from
+  // 0.15 in every key, reaches the same state from either file.
+  for (Character c : {Character::Biped, Character::Quadruped}) {
+    json v8 = json::parse(presetText(c));
+    ASSERT_TRUE(v8.contains("keys"));
+    json v7 = v8;
+    v7["version"] = 7;
+    v7["params"].erase("speedTrackedFrom");
+    for (json& key : v7["keys"]) key["params"].erase("speedTrackedFrom");
+    v8["params"]["speedTrackedFrom"] = 0.15;
+    for (json& key : v8["keys"]) key["params"]["speedTrackedFrom"] = 0.15;
+    GaitFile migrated, current;
+    ASSERT_FALSE(parseGaitFile(v7.dump(), c, &migrated));
+    ASSERT_FALSE(parseGaitFile(v8.dump(), c, &current));
+    ASSERT_EQ(migrated.gait.keys.size(), current.gait.keys.size());
+    for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
+      EXPECT_EQ(migrated.gait.keys[k].params.speedTrackedFrom, 0.15) << "key " << k;
       EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
     }
   }

@@ -596,6 +596,28 @@ TEST(SpeedRange, TheSpeedTrimIsBoundedByTheKeysMaxSpeedTrim) {
   EXPECT_GT(shipped, some + 0.1);
 }
 
+// Speed tracking acts from each key's speedTrackedFrom: the biped's walk with double support steps
+// at about 0.45 m/s unless the trim slows it, so at a goal of 0.1 m/s it walks the goal when
+// tracked from 0.05 (the preset) and far too fast when tracked from 0.15, as every gait was
+// before schema 8 (docs/controller-notes.md §48).
+TEST(SpeedRange, SlowGoalsAreTrackedFromTheKeysSpeedTrackedFrom) {
+  auto meanSpeed = [](double from) {
+    gaitlab::gait::Gait gait = gaitlab::gait::defaultGait(Character::Biped);
+    for (gaitlab::gait::SpeedKey& k : gait.keys) k.params.speedTrackedFrom = from;
+    WalkOptions o;
+    o.character = Character::Biped;
+    o.gait = &gait;
+    o.speed = 0.1;
+    o.seconds = 30;
+    const auto r = runWalk(o);
+    EXPECT_FALSE(r.fell) << "tracked from " << from << ": fell after " << r.fallTime << " s";
+    return r.meanSpeed;
+  };
+  EXPECT_EQ(gaitlab::gait::defaultGait(Character::Biped).keys.front().params.speedTrackedFrom, 0.05);
+  EXPECT_NEAR(meanSpeed(0.05), 0.1, 0.015);
+  EXPECT_GT(meanSpeed(0.15), 0.2);
+}
+
 // A gait set before the first step starts the gait player from its own footfall pattern, as a
 // character spawned with it would (`gaitlab walk --params`, the optimiser's episodes): the
 // quadruped spawned with the trot and given the walk has the walk's legs in stance, and keeps a

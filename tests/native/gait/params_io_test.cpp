@@ -9,6 +9,8 @@
 #include <limits>
 #include <random>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "gait/defaults.h"
 #include "gait/params_io.h"
@@ -144,83 +146,53 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
   EXPECT_EQ(migrated.gait.primaryParams().speedIntegralGain, 0.0);
 }
 
+namespace {
+
+// The preset of `c` as a file of schema `version` would have it: the fields later schemas added
+// (`added`, each with the value its migration gives) taken out of the parameters and of every key.
+// It must load as the preset with those fields at those values, key by key and bit for bit: a
+// migration adds what was added and moves nothing else.
+void expectMigrated(Character c, int version, const std::vector<std::pair<const char*, double>>& added) {
+  json current = json::parse(presetText(c));
+  ASSERT_TRUE(current.contains("keys"));
+  json old = current;
+  old["version"] = version;
+  for (const auto& [name, value] : added) {
+    old["params"].erase(name);
+    current["params"][name] = value;
+    for (json& key : old["keys"]) key["params"].erase(name);
+    for (json& key : current["keys"]) key["params"][name] = value;
+  }
+  GaitFile migrated, expected;
+  ASSERT_FALSE(parseGaitFile(old.dump(), c, &migrated));
+  ASSERT_FALSE(parseGaitFile(current.dump(), c, &expected));
+  ASSERT_EQ(migrated.gait.keys.size(), expected.gait.keys.size());
+  for (size_t k = 0; k < migrated.gait.keys.size(); ++k)
+    EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, expected.gait.keys[k].params)) << "key " << k;
+}
+
+}  // namespace
+
 TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
   // Schema 6 added standing on planted feet (standSpeed); 0 steps in place at goal 0 as every
-  // gait of version 5 did, so a version-5 file loads as itself, keys and all, with it off.
-  json v6 = json::parse(presetText(Character::Biped));
-  ASSERT_TRUE(v6.contains("keys"));
-  json v5 = v6;
-  v5["version"] = 5;
-  for (const char* added : {"standSpeed", "maxSpeedTrim", "speedTrackedFrom"}) {
-    v5["params"].erase(added);
-    for (json& key : v5["keys"]) key["params"].erase(added);
-  }
-  // ... and the trim bound of schema 7 and where tracking starts of schema 8 at 0.5 and 0.15 m/s,
-  // the constants before them (the preset's keys may have their own).
-  v6["params"]["standSpeed"] = 0.0;
-  v6["params"]["maxSpeedTrim"] = 0.5;
-  v6["params"]["speedTrackedFrom"] = 0.15;
-  for (json& key : v6["keys"])
-    key["params"]["standSpeed"] = 0.0, key["params"]["maxSpeedTrim"] = 0.5, key["params"]["speedTrackedFrom"] = 0.15;
-  GaitFile migrated, current;
-  ASSERT_FALSE(parseGaitFile(v5.dump(), Character::Biped, &migrated));
-  ASSERT_FALSE(parseGaitFile(v6.dump(), Character::Biped, &current));
-  ASSERT_EQ(migrated.gait.keys.size(), current.gait.keys.size());
-  for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
-    EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
-    EXPECT_EQ(migrated.gait.keys[k].params.standSpeed, 0.0);
-  }
+  // gait of version 5 did, so a version-5 file loads as itself, keys and all, with it off (and
+  // with the later schemas' fields at their old constants, as below).
+  for (Character c : {Character::Biped, Character::Quadruped})
+    expectMigrated(c, 5, {{"standSpeed", 0.0}, {"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}});
 }
 
 TEST(GaitFile, AVersion6FileIsMigratedToTheOldTrimBound) {
   // Schema 7 made speed tracking's trim bound a parameter of each key (maxSpeedTrim); every gait
   // before it had 0.5 m/s, so a version-6 file loads with 0.5 in every key and nothing else moved.
-  for (Character c : {Character::Biped, Character::Quadruped}) {
-    json v7 = json::parse(presetText(c));
-    ASSERT_TRUE(v7.contains("keys"));
-    json v6 = v7;
-    v6["version"] = 6;
-    for (const char* added : {"maxSpeedTrim", "speedTrackedFrom"}) {
-      v6["params"].erase(added);
-      for (json& key : v6["keys"]) key["params"].erase(added);
-    }
-    v7["params"]["maxSpeedTrim"] = 0.5;
-    v7["params"]["speedTrackedFrom"] = 0.15;
-    for (json& key : v7["keys"]) key["params"]["maxSpeedTrim"] = 0.5, key["params"]["speedTrackedFrom"] = 0.15;
-    GaitFile migrated, current;
-    ASSERT_FALSE(parseGaitFile(v6.dump(), c, &migrated));
-    ASSERT_FALSE(parseGaitFile(v7.dump(), c, &current));
-    ASSERT_EQ(migrated.gait.keys.size(), current.gait.keys.size());
-    for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
-      EXPECT_EQ(migrated.gait.keys[k].params.maxSpeedTrim, 0.5) << "key " << k;
-      EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
-    }
-  }
+  for (Character c : {Character::Biped, Character::Quadruped})
+    expectMigrated(c, 6, {{"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}});
 }
 
 TEST(GaitFile, AVersion7FileIsMigratedToTrackingFromTheOldSpeed) {
   // Schema 8 made the desired speed from which speed tracking acts a parameter of each key
   // (speedTrackedFrom); every gait before it had 0.15 m/s, so a version-7 file loads with 0.15 in
-  // every key and nothing else moved, and it walks as it did: the quadruped preset, tracked from
-  // 0.15 in every key, reaches the same state from either file.
-  for (Character c : {Character::Biped, Character::Quadruped}) {
-    json v8 = json::parse(presetText(c));
-    ASSERT_TRUE(v8.contains("keys"));
-    json v7 = v8;
-    v7["version"] = 7;
-    v7["params"].erase("speedTrackedFrom");
-    for (json& key : v7["keys"]) key["params"].erase("speedTrackedFrom");
-    v8["params"]["speedTrackedFrom"] = 0.15;
-    for (json& key : v8["keys"]) key["params"]["speedTrackedFrom"] = 0.15;
-    GaitFile migrated, current;
-    ASSERT_FALSE(parseGaitFile(v7.dump(), c, &migrated));
-    ASSERT_FALSE(parseGaitFile(v8.dump(), c, &current));
-    ASSERT_EQ(migrated.gait.keys.size(), current.gait.keys.size());
-    for (size_t k = 0; k < migrated.gait.keys.size(); ++k) {
-      EXPECT_EQ(migrated.gait.keys[k].params.speedTrackedFrom, 0.15) << "key " << k;
-      EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, current.gait.keys[k].params)) << "key " << k;
-    }
-  }
+  // every key and nothing else moved.
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 7, {{"speedTrackedFrom", 0.15}});
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <optional>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -575,21 +577,33 @@ TEST(WalkTrial, APushHeldOverTimeGivesTheImpulseItNames) {
   EXPECT_NEAR(bodyVelocity, 30 / mass, 0.15 * 30 / mass);
 }
 
+namespace {
+
+// The mean speed of `character`'s preset at goal `speed` for `seconds`, with `edit` made to every
+// speed key; `what` names the edit if the walk falls.
+double meanSpeedWithEveryKey(Character character, double speed, double seconds,
+                             const std::function<void(gaitlab::gait::GaitParams&)>& edit, const std::string& what) {
+  gaitlab::gait::Gait gait = gaitlab::gait::defaultGait(character);
+  for (gaitlab::gait::SpeedKey& k : gait.keys) edit(k.params);
+  WalkOptions o;
+  o.character = character;
+  o.gait = &gait;
+  o.speed = speed;
+  o.seconds = seconds;
+  const auto r = runWalk(o);
+  EXPECT_FALSE(r.fell) << what << ": fell after " << r.fallTime << " s";
+  return r.meanSpeed;
+}
+
+}  // namespace
+
 // Speed tracking's trim is bounded by each key's maxSpeedTrim: at 2.1 m/s, where the trot's key
 // lags its goal without the trim (1.53 m/s measured), a bound of 0 walks slowest, 0.25 m/s faster
 // (1.83) and the shipped 0.5 m/s (1.98) faster again.
 TEST(SpeedRange, TheSpeedTrimIsBoundedByTheKeysMaxSpeedTrim) {
-  auto meanSpeed = [](double bound) {
-    gaitlab::gait::Gait gait = gaitlab::gait::defaultGait(Character::Quadruped);
-    for (gaitlab::gait::SpeedKey& k : gait.keys) k.params.maxSpeedTrim = bound;
-    WalkOptions o;
-    o.character = Character::Quadruped;
-    o.gait = &gait;
-    o.speed = 2.1;
-    o.seconds = 16;
-    const auto r = runWalk(o);
-    EXPECT_FALSE(r.fell) << "bound " << bound << ": fell after " << r.fallTime << " s";
-    return r.meanSpeed;
+  const auto meanSpeed = [](double bound) {
+    return meanSpeedWithEveryKey(Character::Quadruped, 2.1, 16, [bound](auto& p) { p.maxSpeedTrim = bound; },
+                                 "bound " + std::to_string(bound));
   };
   const double none = meanSpeed(0), some = meanSpeed(0.25), shipped = meanSpeed(0.5);
   EXPECT_GT(some, none + 0.1);
@@ -601,17 +615,9 @@ TEST(SpeedRange, TheSpeedTrimIsBoundedByTheKeysMaxSpeedTrim) {
 // tracked from 0.05 (the preset) and far too fast when tracked from 0.15, as every gait was
 // before schema 8 (docs/controller-notes.md §48).
 TEST(SpeedRange, SlowGoalsAreTrackedFromTheKeysSpeedTrackedFrom) {
-  auto meanSpeed = [](double from) {
-    gaitlab::gait::Gait gait = gaitlab::gait::defaultGait(Character::Biped);
-    for (gaitlab::gait::SpeedKey& k : gait.keys) k.params.speedTrackedFrom = from;
-    WalkOptions o;
-    o.character = Character::Biped;
-    o.gait = &gait;
-    o.speed = 0.1;
-    o.seconds = 30;
-    const auto r = runWalk(o);
-    EXPECT_FALSE(r.fell) << "tracked from " << from << ": fell after " << r.fallTime << " s";
-    return r.meanSpeed;
+  const auto meanSpeed = [](double from) {
+    return meanSpeedWithEveryKey(Character::Biped, 0.1, 30, [from](auto& p) { p.speedTrackedFrom = from; },
+                                 "tracked from " + std::to_string(from));
   };
   EXPECT_EQ(gaitlab::gait::defaultGait(Character::Biped).keys.front().params.speedTrackedFrom, 0.05);
   EXPECT_NEAR(meanSpeed(0.05), 0.1, 0.015);

@@ -29,7 +29,7 @@ bool sameBits(const GaitParams& a, const GaitParams& b) { return std::memcmp(&a,
 
 TEST(GaitTransition, WalkAndTrotDifferInFootfallButATrotTunedApartDoesNot) {
   EXPECT_TRUE(footfallDiffers(kWalk.legs, kTrot.legs, 4));
-  EXPECT_TRUE(footfallDiffers(kTrot.legs, quadruped(0.0, 0.0, 0.5, 0.5).legs, 4));  // pace
+  EXPECT_TRUE(footfallDiffers(kTrot.legs, quadruped(0.0, 0.0, 0.5, 0.5).legs, 4));  // bound: the front pair, then the back
   // The shipped trot's keys differ by up to 0.1 of a cycle, and a whole pattern moved is the same.
   EXPECT_FALSE(footfallDiffers(kTrot.legs, quadruped(0.07, 0.55, 0.43, 0.1).legs, 4));
   EXPECT_FALSE(footfallDiffers(kTrot.legs, quadruped(0.3, 0.8, 0.8, 0.3).legs, 4));

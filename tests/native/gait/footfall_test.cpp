@@ -70,8 +70,8 @@ TEST(Footfall, EveryFootDownMoreThanHalfTheCycleIsAWalk) {
 
 // The gait files: the quadruped's walk, trot (every key, the 2.7 m/s key's uneven rhythm
 // included) and pace, the canter keys of the research gait, and the biped's two gaits: the preset,
-// a walk with double support, and the jog it replaced, whose keys are a run by duty factor
-// (0.41 / 0.36) at every speed (docs/controller-notes.md).
+// a walk with double support, and the jog it replaced, a run by duty factor (0.41 / 0.36) at
+// every speed (docs/controller-notes.md).
 TEST(Footfall, TheGaitFilesAreTheGaitsTheyAreNamedFor) {
   using V = std::vector<std::string>;
   EXPECT_EQ(keysOf("public/presets/quadruped-walk.json", Character::Quadruped), V{"walk"});

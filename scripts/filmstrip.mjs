@@ -52,7 +52,7 @@ const count = (name, min, max) => {
 };
 const frames = count('frames', 1, 24), every = count('every', 1, 1200), warmup = count('warmup', 0, 12000);
 const speed = args.speed === undefined ? null : Number(args.speed);
-if (speed !== null && !(Number.isFinite(speed) && speed >= 0 && speed <= 3)) usage('--speed must be in [0, 3] m/s');
+if (speed !== null && !(Number.isFinite(speed) && speed >= 0 && speed <= 5)) usage('--speed must be in [0, 5] m/s (the goal speeds the CLI takes)');
 const out = path.resolve(args.out ?? path.join(repoDir, 'docs', 'images', `${args.type}-gait.png`));
 
 // A gait file reaches the page as a share link carries one, made by the page's own codec

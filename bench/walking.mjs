@@ -37,7 +37,7 @@
 //     criteria's 12 starts vary the heading and a push; this varies where in its stride it starts;
 //   - transitions: the goal changes between two speeds every 1 to 4 s (at random, so at any phase
 //     of the stride), 8 changes per run, 20 runs per pair of speeds, for pairs across each change
-//     of gait (the quadruped's walk and trot, gait/gait_transition.h; the biped's walk and run,
+//     of gait (the quadruped's walk and trot, and its trot and canter, gait/gait_transition.h; the biped's walk and run,
 //     keys of one footfall pattern that blend) and from standing: how many runs fall, and how many
 //     changes of footfall pattern the runs made;
 //   - skills: the gaits the locomotion criteria name, read from the sweep by each goal's footfall
@@ -373,7 +373,7 @@ async function measureStarts(character) {
 // for 1 to 4 s (drawn by a seeded generator, so every run is reproducible), 9 holds per run.
 const TRANSITION_PAIRS = {
   biped: [[0, 1.0], [0.5, 2.5], [1.0, 2.5]],
-  quadruped: [[0, 0.2], [0.2, 0.6], [0, 0.6], [0.1, 1.0]],
+  quadruped: [[0, 0.2], [0.2, 0.6], [0, 0.6], [0.1, 1.0], [2.2, 3.5]],
 };
 const TRANSITION_RUNS = 20, TRANSITION_HOLDS = 9;
 function transitionSchedule(lo, hi, seed) {

@@ -37,9 +37,9 @@
 //     criteria's 12 starts vary the heading and a push; this varies where in its stride it starts;
 //   - transitions: the goal changes between two speeds every 1 to 4 s (at random, so at any phase
 //     of the stride), 8 changes per run, 20 runs per pair of speeds, for pairs across each change
-//     of gait (the quadruped's walk and trot, and its trot and canter, gait/gait_transition.h; the biped's walk and run,
-//     keys of one footfall pattern that blend) and from standing: how many runs fall, and how many
-//     changes of footfall pattern the runs made;
+//     of gait (the quadruped's walk and trot, and its trot and canter, gait/gait_transition.h;
+//     the biped's walk and run, keys of one footfall pattern that blend) and from standing: how
+//     many runs fall, and how many changes of footfall pattern the runs made;
 //   - skills: the gaits the locomotion criteria name, read from the sweep by each goal's footfall
 //     pattern (`footfall` in `gaitlab walk --json`, native/src/gait/footfall.h: a walk when every
 //     foot is down more than half the cycle, Alexander 1984; a quadruped's running gaits by the

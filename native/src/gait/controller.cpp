@@ -37,6 +37,13 @@ constexpr double kSpeedTrimFade = 0.5;
 // full gain (docs/controller-notes.md §28: 0.5 s and 0.1 m/s at gain 8 kept every held push).
 constexpr double kSpeedMeanWindow = 0.5;
 constexpr double kMaxSpeedCorrection = 0.1;
+// The speed error the integral trim integrates is bounded (m/s): the trim is there to take out a
+// gait's steady bias, not to chase the lag of a body still accelerating. Unbounded, the canter's
+// trim (gain 1.7 1/s) wound up to 0.8–1.3 m/s within a second of a change from the trot, the body
+// still 1 m/s behind its goal, and the quadruped fell. Of bounds 0.1–0.25 m/s (measured on trot ↔
+// canter changes, held canter goals, pushes and the walking benchmark), 0.1 and 0.15 fell least on
+// the changes; 0.1 tracked the quadruped's ramp worse (controller-notes §50).
+constexpr double kMaxTrimError = 0.15;
 
 // Standing (goal speed 0, beyond the thesis): the spot held, by a desired velocity of kHoldGain
 // times the distance to it, at most kMaxHoldSpeed; and how far a character may be carried from it
@@ -118,6 +125,11 @@ void Controller::blendAt(double speed, bool restart, bool cycleStart) {
   transitionPending_ = change && !cycleStart;
   if (transitionPending_) return;
   if (change) {
+    // Speed tracking's trim and mean error belong to the gait they were measured under: the
+    // canter's trim, up to 1.45 m/s, asked the trot after it for 0.5 m/s more than its goal. The
+    // new gait starts its own from zero (controller-notes §50).
+    speedTrim_ = 0;
+    meanSpeedError_ = 0;
     player_.shiftPhase(transitionPhaseShift(params_.legs, next.legs, legs));
     ++gaitChanges_;
   }
@@ -173,7 +185,8 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
     blendAt(std::abs(desiredVelocity_.z()));
   // Speed tracking (speedIntegralGain, beyond the thesis): F_v = K_v (v_d − v) alone leaves a
   // speed error that depends on the speed (the biped walked 0.92 m/s at 1.0 and 1.53 at 1.4,
-  // controller-notes §14). The velocity F_v aims at is v_d plus the integral of that error. Below
+  // controller-notes §14). The velocity F_v aims at is v_d plus the integral of that error (each
+  // step's error bounded by kMaxTrimError, and the integral reset at a change of gait). Below
   // speedTrackedFrom the low-speed capture-point placement governs and the trim fades out.
   // While v_d is still ramping to the goal the body lags it by design; integrating that lag
   // wound the trim up on every start from rest (from 0.15 m/s one biped in 16 of the crowd
@@ -183,7 +196,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   if (desiredVelocity_.z() >= params_.speedTrackedFrom) {
     if (desiredVelocity_.z() == goal_.speed) {
       const double error = desiredVelocity_.z() - velocityH.z();
-      speedTrim_ += params_.speedIntegralGain * error * dt;
+      speedTrim_ += params_.speedIntegralGain * std::clamp(error, -kMaxTrimError, kMaxTrimError) * dt;
       meanSpeedError_ += (dt / kSpeedMeanWindow) * (error - meanSpeedError_);
     }
   } else {

@@ -67,6 +67,8 @@ class Controller {
   int gaitChanges() const { return gaitChanges_; }
   double desiredHeading() const { return desiredHeading_; }
   const Eigen::Vector3d& desiredVelocity() const { return desiredVelocity_; }  // heading frame
+  // Speed tracking's integral trim (m/s): how much faster than v_d F_v aims.
+  double speedTrim() const { return speedTrim_; }
   // Standing on planted feet (gait/standing.cpp): every foot down, the gait clock stopped.
   bool standing() const { return stand_ == Stand::Planted; }
 

@@ -72,8 +72,9 @@ Table build(Character c) {
          proto.maxAcceleration);
 
   scalar("speedIntegralGain", kStance, {0, 2}, "1/s",
-         "speed tracking: F_v aims at v_d plus the integral of the speed error (v_d − v) at this "
-         "rate, so the measured speed settles on the goal; 0: F_v towards v_d only (eq. 3.6)",
+         "speed tracking: F_v aims at v_d plus the integral of the speed error (v_d − v, bounded "
+         "to 0.15 m/s; started again at each change of gait) at this rate, so the measured speed "
+         "settles on the goal; 0: F_v towards v_d only (eq. 3.6)",
          proto.speedIntegralGain);
   scalar("speedProportionalGain", kStance, {0, 20}, "1",
          "speed tracking: F_v also aims this many times the speed error averaged over about a "

@@ -64,8 +64,8 @@ struct GaitParams {
   double period = 1;        // T, seconds (§3.1.1)
   double maxAcceleration = 1;  // m/s², bound on the desired-velocity ramp (§3.1.6)
   // Speed tracking (beyond the thesis): the velocity F_v (eq. 3.6) aims at is v_d plus the
-  // integral of the speed error (v_d − v, bounded at 0.1 m/s per step, controller.cpp) at this
-  // rate, 1/s; 0 = F_v towards v_d as in the thesis.
+  // integral of the speed error (v_d − v, bounded to ±0.15 m/s: kMaxTrimError, controller.cpp)
+  // at this rate, 1/s; 0 = F_v towards v_d as in the thesis.
   double speedIntegralGain = 0;
   // And a proportional term on the speed error averaged over about a stride (kSpeedMeanWindow):
   // F_v aims at v_d plus this gain times that mean error (bounded), so a walk that runs 10 % fast

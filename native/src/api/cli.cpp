@@ -25,6 +25,7 @@
 #include "api/c_api.h"
 #include "api/cli_bench.h"
 #include "api/options.h"
+#include "body/creature.h"
 #include "gait/defaults.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
@@ -70,6 +71,10 @@ const char* kWalkUsage =
     "\n"
     "  --character biped|quadruped   (default biped, or the --params file's character)\n"
     "  --params FILE                 gait file (public/presets/*.json format); default: preset\n"
+    "  --creature FILE               the character's body from a creature file\n"
+    "                                (public/creatures/*.json format); default: the shipped\n"
+    "                                body. Its leg frames choose the character: one a biped,\n"
+    "                                two a quadruped (more are not walked yet)\n"
     "  --speed M_S                   goal speed, m/s, -5 to 5 (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s, -3 to 3 (default 0)\n"
     "  --heading RAD                 heading it starts facing, about +y (default 0: +z)\n"
@@ -188,6 +193,27 @@ int loadParamsOption(const std::string& path, std::optional<gait::Character> exp
   return 0;
 }
 
+// Loads a --creature file (body/creature.h); its leg frames choose the character, which must be
+// the one --character named, if it did. A refused file is reported as "gaitlab: FILE: FIELD:
+// WHAT" (exit status 2).
+int loadCreatureOption(const std::string& path, std::optional<gait::Character>* chosen, body::Morphology* out) {
+  const auto refuse = [&](const std::string& why) {
+    std::fprintf(stderr, "gaitlab: %s: %s\n", path.c_str(), why.c_str());
+    return 2;
+  };
+  if (const auto error = body::loadCreatureFile(path, out)) return refuse(error->describe());
+  const size_t frames = out->legFrames.size();
+  // The controller's leg frames: the biped's one, the quadruped's two (gait/schema.h).
+  if (frames > 2)
+    return refuse("legFrames: " + std::to_string(frames) + " leg frames; the controller walks bodies of one or two so far");
+  const gait::Character c = gait::characterOf(*out);
+  if (*chosen && **chosen != c)
+    return refuse("a body of " + std::to_string(frames) + " leg frame" + (frames == 1 ? "" : "s") + " walks as a " +
+                  gait::characterName(c) + ", not as the " + gait::characterName(**chosen) + " --character names");
+  *chosen = c;
+  return 0;
+}
+
 // `gaitlab walk --box-hits N`: the box-hit trial (sim/box_hits.h) with the walk's character,
 // gait, goal and ground.
 int boxHits(const sim::WalkOptions& w, int hits, bool oneLine) {
@@ -216,7 +242,7 @@ int boxHits(const sim::WalkOptions& w, int hits, bool oneLine) {
 
 int walk(int argc, char** argv) {
   Options o(argc, argv, 2,
-            {"--character", "--params", "--speed", "--turn", "--heading", "--start-push-forward",
+            {"--character", "--params", "--creature", "--speed", "--turn", "--heading", "--start-push-forward",
              "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
              "--push-direction", "--push-duration", "--speed-schedule", "--gait-schedule", "--drift-window", "--box-hits",
              "--start-phase"},
@@ -226,6 +252,11 @@ int walk(int argc, char** argv) {
   sim::WalkOptions w;
   std::optional<gait::Character> chosen;
   if (!characterOption(o, &chosen)) return api::usageError("walk", o.error);
+  body::Morphology creature;
+  if (o.values.count("--creature")) {
+    if (const int status = loadCreatureOption(o.values["--creature"], &chosen, &creature)) return status;
+    w.body = &creature;
+  }
   gait::GaitFile file;
   gait::Gait gait;
   if (o.values.count("--params")) {

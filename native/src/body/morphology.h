@@ -59,6 +59,9 @@ struct Leg {
   double kneeBend;  // +1: the knee points forward (human, quadruped hind leg points back: -1)
 };
 
+// The most links a spine section between two leg frames may have (creature files, body/creature.h).
+constexpr int kMaxSpineLinks = 8;
+
 struct Morphology {
   std::string name;
   std::vector<Segment> segments;
@@ -78,6 +81,7 @@ struct Morphology {
   // The thesis's fall criterion is on the leg frame; ours: below half standing height.
 };
 
+// The shipped characters, built from their creature files (public/creatures/, body/creature.h).
 Morphology makeBiped();
 Morphology makeQuadruped();
 

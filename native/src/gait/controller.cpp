@@ -596,7 +596,7 @@ void Controller::spine(const CharacterState& s, Vector3d* torques) {
   const int n = static_cast<int>(m_.segments.size());
   const int front = m_.legFrames[0], back = m_.legFrames[1];
   // Joints along the spine, front to back: spine links, then the back leg frame.
-  int joints[8];
+  int joints[body::kMaxSpineLinks + 1];
   int count = 0;
   for (int link : m_.spine) joints[count++] = link;
   joints[count++] = back;

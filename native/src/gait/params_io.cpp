@@ -260,6 +260,9 @@ std::optional<ParamsError> readKeys(Character c, const json& kj, int version, co
 
 }  // namespace
 
+std::string jsonTypeName(const nlohmann::json& v) { return typeName(v); }
+std::string jsonShown(const nlohmann::json& v) { return shown(v); }
+
 std::optional<ParamsError> checkJsonText(const std::string& text) {
   if (static_cast<long>(text.size()) > limits::kMaxJsonBytes)
     return ParamsError{"", "the text is " + std::to_string(text.size()) + " bytes long; at most " +

@@ -52,6 +52,11 @@ struct GaitFile {
 // goes through this before it is parsed. Returns the problem (empty field), or nullopt.
 std::optional<ParamsError> checkJsonText(const std::string& text);
 
+// For other formats read the way gait files are (body/creature.h): what a JSON value is ("a
+// number", "an array of 3"), and a value as it appears in a message (at most 80 characters).
+std::string jsonTypeName(const nlohmann::json& v);
+std::string jsonShown(const nlohmann::json& v);
+
 // Parses and validates `text`. With `expected`, a file for another character is refused.
 // On success fills *out and returns nullopt; on failure returns the error and leaves *out as it
 // was.

@@ -50,6 +50,10 @@ int Simulation::spawn(Character kind, double x, double z, double heading) {
   return spawnCharacter(kind, x, z, heading, shards_.leastPopulated());
 }
 
+void Simulation::setBody(Character kind, const body::Morphology& morphology) {
+  (kind == Character::Biped ? biped_ : quadruped_) = morphology;
+}
+
 int Simulation::spawnBox(double x, double z, double heading) {
   if (boxRoom() < 1) return -1;
   const int id = ids_.create(-1);

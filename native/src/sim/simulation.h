@@ -53,6 +53,10 @@ class Simulation {
   // Spawns a character standing at (x, z), or a box (a prop, 0.3 m, 4 kg) dropped from 1.5 m
   // there. Returns its id, or -1 if the render buffer has no room left.
   int spawn(Character kind, double x, double z, double heading);
+  // The body characters of `kind` spawned from now on are built with: a creature file's
+  // (body/creature.h, `gaitlab walk --creature`) instead of the shipped one. It must have the
+  // kind's leg frames (gait::characterOf).
+  void setBody(Character kind, const body::Morphology& morphology);
   int spawnBox(double x, double z, double heading);
   // `count` characters (Crowd::Mixed: biped and quadruped in turn, a biped first) in the next
   // free places of the demo page's layout (SceneLayout), each walking forward at its type's

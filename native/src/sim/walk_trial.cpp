@@ -64,6 +64,7 @@ bool hasFallen(const physics::Character& ch, const physics::World& world) {
 
 void setUpWalk(Simulation& sim, const WalkOptions& o) {
   if (o.terrain != physics::TerrainKind::Flat) sim.setTerrain(o.terrain);
+  if (o.body) sim.setBody(o.character, *o.body);
   sim.spawn(o.character, 0, 0, o.heading);
   if (o.gait) sim.controller(0).setGait(*o.gait);
   sim.setGoal(0, {goalSpeedAt(o, 0.0), o.turnRate});

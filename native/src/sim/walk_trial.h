@@ -22,6 +22,9 @@ enum class PushDirection { Lateral, Forward, Backward, Any };
 struct WalkOptions {
   Character character = Character::Biped;
   const gait::Gait* gait = nullptr;  // nullptr: the character's preset
+  // The character's body: nullptr is the shipped one, else a creature file's with the
+  // character's leg frames (`gaitlab walk --creature`). It must outlive the walk.
+  const body::Morphology* body = nullptr;
   double speed = 1.0;      // goal speed, m/s
   double turnRate = 0.0;   // goal turn rate, rad/s
   double seconds = 20.0;   // simulated

@@ -1,0 +1,161 @@
+// Creature files (body/creature.h): the shipped biped and quadruped as data, bodies of other leg
+// counts built by the same rules, and files refused whole with the field named.
+#include "body/creature.h"
+
+#include <gtest/gtest.h>
+
+#include "sim/walk_trial.h"
+
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace gaitlab::body {
+namespace {
+
+using nlohmann::json;
+
+std::string readText(const std::string& relative) {
+  std::ifstream in(std::string(GAITLAB_SOURCE_DIR) + "/" + relative);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+json shippedQuadruped() { return json::parse(readText("public/creatures/quadruped.json")); }
+
+// The refusal of a copy of the shipped quadruped with one edit, as "field: message".
+std::string refusal(const std::function<void(json&)>& edit) {
+  json doc = shippedQuadruped();
+  edit(doc);
+  Morphology m;
+  m.name = "untouched";
+  const auto error = parseCreatureFile(doc.dump(), &m);
+  EXPECT_EQ(m.name, "untouched") << "a refused file must build nothing";
+  return error ? error->describe() : "accepted";
+}
+
+// The files on disk are the bodies the simulation uses (the binary embeds them at build time),
+// with the proportions the README and the controller's notes give them.
+TEST(Creature, TheShippedFilesAreTheShippedCharacters) {
+  Morphology biped, quadruped;
+  ASSERT_FALSE(parseCreatureFile(readText("public/creatures/biped.json"), &biped));
+  ASSERT_FALSE(parseCreatureFile(readText("public/creatures/quadruped.json"), &quadruped));
+  EXPECT_EQ(biped.segments.size(), makeBiped().segments.size());
+  EXPECT_EQ(quadruped.segments.size(), makeQuadruped().segments.size());
+  for (size_t i = 0; i < quadruped.segments.size(); ++i) {
+    EXPECT_EQ(quadruped.segments[i].name, makeQuadruped().segments[i].name);
+    EXPECT_EQ(quadruped.segments[i].center, makeQuadruped().segments[i].center);
+  }
+  EXPECT_NEAR(biped.totalMass(), 59.0, 1e-9);
+  EXPECT_NEAR(biped.segments[biped.legs[0].upper].joint.pivot.y(), 0.91, 1e-9);  // hip height
+  EXPECT_NEAR(quadruped.totalMass(), 33.0, 1e-9);
+  EXPECT_NEAR(quadruped.segments[quadruped.legs[0].upper].joint.pivot.y(), 0.485, 1e-9);
+  EXPECT_EQ(quadruped.spine.size(), 4u);
+  EXPECT_EQ(quadruped.legFrames, (std::vector<int>{0, 5}));
+  EXPECT_EQ(quadruped.legs[2].name, "back.left");
+  EXPECT_EQ(quadruped.legs[2].legFrame, 5);
+  EXPECT_EQ(quadruped.legs[0].kneeBend, -1.0);  // the front knees point backwards
+  EXPECT_EQ(biped.legs[1].name, "right");
+  EXPECT_EQ(biped.segments[0].rgba, 0xd9734effu);
+}
+
+// A six-legged body: a third leg frame and a second spine section, by the same rules. Every
+// segment hangs from one before it, the feet rest on the ground, and each pair of legs hangs from
+// its own leg frame.
+TEST(Creature, ThreeLegFramesMakeASixLeggedBody) {
+  json doc = shippedQuadruped();
+  json middle = doc["legFrames"][0];
+  middle["name"] = "legframe.middle";
+  middle["z"] = 0.0;
+  middle["legs"]["name"] = "middle";
+  doc["legFrames"] = {doc["legFrames"][0], middle, doc["legFrames"][1]};
+  json front = doc["spine"][0], back = doc["spine"][0];
+  front["from"] = 0.28, front["to"] = 0.12, front["links"] = 2;
+  back["from"] = -0.12, back["to"] = -0.28, back["links"] = 2;
+  doc["spine"] = {front, back};
+  Morphology m;
+  const auto error = parseCreatureFile(doc.dump(), &m);
+  ASSERT_FALSE(error) << error->describe();
+  EXPECT_EQ(m.legs.size(), 6u);
+  EXPECT_EQ(m.legFrames, (std::vector<int>{0, 3, 6}));
+  EXPECT_EQ(m.spine, (std::vector<int>{1, 2, 4, 5}));
+  EXPECT_EQ(m.segments[3].parent, 2);  // the middle leg frame hangs from the front section's last link
+  EXPECT_NEAR(m.segments[3].joint.pivot.z(), 0.12, 1e-12);
+  EXPECT_EQ(m.legs[2].name, "middle.left");
+  EXPECT_EQ(m.legs[2].legFrame, 3);
+  for (size_t i = 1; i < m.segments.size(); ++i) EXPECT_LT(m.segments[i].parent, static_cast<int>(i));
+  for (const Leg& leg : m.legs) {
+    const Segment& foot = m.segments[leg.foot];
+    EXPECT_DOUBLE_EQ(foot.center.y() - foot.halfExtents.y(), 0.0) << leg.name;
+  }
+}
+
+// A walk with the body read from the shipped file on disk is the walk with the built-in body, state
+// for state; a body that differs in one segment's mass is another walk.
+TEST(Creature, TheShippedFilesWalkAsTheBuiltInBodies) {
+  for (const char* name : {"biped", "quadruped"}) {
+    Morphology fromFile;
+    ASSERT_FALSE(parseCreatureFile(readText(std::string("public/creatures/") + name + ".json"), &fromFile));
+    sim::WalkOptions w;
+    w.character = gait::characterOf(fromFile);
+    w.speed = 0.8;
+    w.seconds = 3;
+    const std::string builtIn = sim::runWalk(w).stateHash;
+    w.body = &fromFile;
+    EXPECT_EQ(sim::runWalk(w).stateHash, builtIn) << name;
+    Morphology heavier = fromFile;
+    heavier.segments[heavier.legs[0].upper].mass *= 1.1;
+    w.body = &heavier;
+    EXPECT_NE(sim::runWalk(w).stateHash, builtIn) << name;
+  }
+}
+
+TEST(Creature, ABadFileIsRefusedWithTheFieldNamed) {
+  EXPECT_EQ(refusal([](json& d) { d["legs"] = 4; }), "legs: unknown field");
+  EXPECT_EQ(refusal([](json& d) { d.erase("armature"); }), "armature: missing");
+  EXPECT_EQ(refusal([](json& d) { d["format"] = "gaitlab-gait"; }),
+            "format: expected \"gaitlab-creature\", got \"gaitlab-gait\"");
+  EXPECT_EQ(refusal([](json& d) { d["version"] = 2; }), "version: expected a whole number from 1 to 1, got 2");
+  EXPECT_EQ(refusal([](json& d) { d["legFrames"][1]["legs"]["upper"]["mass"] = -1; }),
+            "legFrames[1].legs.upper.mass: -1.0 is outside [0.01, 500.0]");
+  EXPECT_EQ(refusal([](json& d) { d["legFrames"][0]["halfExtents"][2] = "wide"; }),
+            "legFrames[0].halfExtents[2]: expected a number, got a string");
+  EXPECT_EQ(refusal([](json& d) { d["legFrames"][0]["legs"]["knee"]["points"] = "up"; }),
+            "legFrames[0].legs.knee.points: expected \"forward\" or \"backward\", got \"up\"");
+  EXPECT_EQ(refusal([](json& d) { d["legFrames"][0]["legs"]["hip"]["lower"][1] = 0.5; }),
+            "legFrames[0].legs.hip.lower[1]: above hip.upper[1]");
+  EXPECT_EQ(refusal([](json& d) { d["legFrames"][0]["colour"] = "orange"; }),
+            "legFrames[0].colour: expected a colour \"#rrggbb\", got \"orange\"");
+  EXPECT_EQ(refusal([](json& d) { d["legFrames"][1]["z"] = 0.5; }),
+            "legFrames[1].z: leg frames go front to back: expected less than 0.4");
+  EXPECT_EQ(refusal([](json& d) { d["spine"] = json::array(); }),
+            "spine: expected an array of 1 sections (one between each two leg frames), got an array of 0");
+  EXPECT_EQ(refusal([](json& d) { d["spine"][0]["links"] = 0; }),
+            "spine[0].links: expected a whole number from 1 to 8, got 0");
+  EXPECT_EQ(refusal([](json& d) { d["spine"][0]["from"] = 0.45; }), "spine[0].from: ahead of legFrames[0].z");
+  EXPECT_EQ(refusal([](json& d) {
+              json frames = json::array();
+              for (int i = 0; i < 5; ++i) frames.push_back(d["legFrames"][0]);
+              d["legFrames"] = frames;
+            }),
+            "legFrames: expected an array of 1 to 4 leg frames, got an array of 5");
+}
+
+TEST(Creature, TextThatIsNotACreatureFileIsRefused) {
+  Morphology m;
+  auto error = parseCreatureFile("{\"format\": ", &m);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->field, "");
+  EXPECT_NE(error->message.find("not valid JSON"), std::string::npos) << error->message;
+  error = parseCreatureFile(std::string(100, '[') + std::string(100, ']'), &m);
+  ASSERT_TRUE(error);
+  EXPECT_NE(error->message.find("nested deeper"), std::string::npos) << error->message;
+  error = loadCreatureFile("/nonexistent/creature.json", &m);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->message, "cannot read /nonexistent/creature.json");
+}
+
+}  // namespace
+}  // namespace gaitlab::body

@@ -3,12 +3,16 @@
 // walking criterion, with `gaitlab walk` (native) and its WASM twin for the controller's cost.
 //
 //   node bench/walking.mjs [--character biped|quadruped|both] [--seconds 60] [--wasm] [--params FILE]
+//                          [--creature FILE,FILE...]
 //                          [--only criteria,sweep,ramp,pushes,boxes,starts,transitions,switches,skills]
 //                          [--jobs 2]
 //                          [--step 0.1]
 //
 // Writes bench/results/walking.json and walking.md and prints the table (with --params FILE, a
-// gait file to measure instead of the preset: walking-<file name>.{json,md}). With --only, the
+// gait file to measure instead of the preset: walking-<file name>.{json,md}). With --creature,
+// creature files (public/creatures/*.json, body/creature.h) instead of the two characters, each
+// under its file's name and with the gait `gaitlab walk --creature` gives it: the walking
+// criteria only, at the quadruped's speeds (walking-creatures.{json,md}). With --only, the
 // sections run are measured afresh and merged into the results already there (each section says
 // when and at which commit it was measured), so one part can be re-measured while iterating.
 // --jobs runs that many `gaitlab walk` processes at once.
@@ -87,7 +91,17 @@ for (const s of only) {
     process.exit(2);
   }
 }
-const characters = opt('character', 'both') === 'both' ? ['biped', 'quadruped'] : [opt('character')];
+// Creature files measured under their own names: `gaitlab walk --creature FILE` for them, and
+// `--character NAME` for the two characters.
+const creatureFiles = opt('creature', null)?.split(',') ?? [];
+const creatures = Object.fromEntries(creatureFiles.map((f) => [path.basename(f, '.json'), path.resolve(f)]));
+const who = (character) => (creatures[character] ? ['--creature', creatures[character]] : ['--character', character]);
+if (creatureFiles.length && only.some((s) => s !== 'criteria')) {
+  console.error('walking: --creature measures the walking criteria only (--only criteria)');
+  process.exit(2);
+}
+const characters = creatureFiles.length ? Object.keys(creatures)
+  : opt('character', 'both') === 'both' ? ['biped', 'quadruped'] : [opt('character')];
 const withWasm = args.includes('--wasm');
 const paramsFile = opt('params', null);
 if (!existsSync(cli)) {
@@ -105,6 +119,7 @@ const GOALS = {
   biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }, { speed: 1.0, turn: 0.5 }, { speed: 1.0, turn: -0.5 }], top: 2.5, sweepTo: 2.9, cruise: 0.5 },
   quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }], top: 2.5, sweepTo: 4.5, cruise: 0.4 },
 };
+for (const name of Object.keys(creatures)) GOALS[name] = { speeds: GOALS.quadruped.speeds, turns: GOALS.quadruped.turns };
 const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 50, 60, 70, 80];  // N·s at the leg frame
 // How long a push lasts, s: held 0.2 s (a push, as the literature measures it), or 0 (one step).
 const PUSH_DURATIONS = [0.2, 0];
@@ -115,7 +130,7 @@ const RAMP_REPEATS = 20, RAMP_REPEAT_STEP = 0.1;  // s of standing before each r
 const BOX_HITS = 50, BOX_FALLS_ALLOWED = 0.2;  // at most 1 in 5 hits may knock it over
 
 function walk(character, extra, wasm = false) {
-  const argv = ['walk', '--character', character, '--json', ...(paramsFile ? ['--params', paramsFile] : []), ...extra.map(String)];
+  const argv = ['walk', ...who(character), '--json', ...(paramsFile ? ['--params', paramsFile] : []), ...extra.map(String)];
   const out = wasm
     ? execFileSync(process.execPath, [path.join(root, 'bench/wasm.mjs'), ...argv], { encoding: 'utf8' })
     : execFileSync(cli, argv, { encoding: 'utf8' });
@@ -126,7 +141,7 @@ function walk(character, extra, wasm = false) {
 let running = 0;
 const waiting = [];
 function walkAsync(character, extra, params = paramsFile) {
-  const argv = ['walk', '--character', character, '--json', ...(params ? ['--params', params] : []), ...extra.map(String)];
+  const argv = ['walk', ...who(character), '--json', ...(params ? ['--params', params] : []), ...extra.map(String)];
   return new Promise((resolve, reject) => {
     const start = () => {
       running++;
@@ -169,13 +184,13 @@ const STARTS = [0, 0.02, -0.02, 0.05].flatMap((heading) => [0, 2, -2].map((push)
 let commit = 'unknown';
 try {
   commit = execFileSync('git', ['rev-parse', '--short', 'HEAD'], { cwd: root, encoding: 'utf8' }).trim();
-  const dirty = execFileSync('git', ['status', '--porcelain', '--untracked-files=no', 'native', 'public/presets'], { cwd: root, encoding: 'utf8' }).trim();
+  const dirty = execFileSync('git', ['status', '--porcelain', '--untracked-files=no', 'native', 'public/presets', 'public/creatures'], { cwd: root, encoding: 'utf8' }).trim();
   if (dirty) commit += ' + uncommitted changes';
 } catch { /* not a checkout */ }
 const stamp = { measured: new Date().toISOString(), commit, seconds };
 
 const dir = path.join(root, 'bench/results');
-const base = paramsFile ? `walking-${path.basename(paramsFile, '.json')}` : 'walking';
+const base = creatureFiles.length ? 'walking-creatures' : paramsFile ? `walking-${path.basename(paramsFile, '.json')}` : 'walking';
 // Merge into what is there: the sections not run keep their figures.
 let report = { characters: {} };
 if (existsSync(path.join(dir, `${base}.json`))) {
@@ -470,7 +485,7 @@ for (const character of characters) {
 
 if (paramsFile) report.params = paramsFile;
 const f2 = (x) => (x == null ? '–' : x.toFixed(2));
-const lines = [`# Walking benchmark (${report.machine}${paramsFile ? `, gait ${paramsFile}` : ''})`, ''];
+const lines = [`# Walking benchmark (${report.machine}${paramsFile ? `, gait ${paramsFile}` : ''}${creatureFiles.length ? ', creature files' : ''})`, ''];
 for (const [character, r] of Object.entries(report.characters)) {
   const { speeds: SPEEDS } = GOALS[character];
   lines.push(`## ${character}`, '');

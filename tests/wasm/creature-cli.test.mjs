@@ -1,7 +1,7 @@
-// `gaitlab walk --creature FILE`, natively and as WebAssembly under Node: the shipped creature
-// files walk exactly as the built-in bodies (same state hash); a body the controller cannot walk
-// yet, a body that contradicts --character and a bad file are refused with the file and the
-// field named (exit status 2).
+// `gaitlab walk --creature FILE`, natively and as WebAssembly under Node: the biped's and the
+// quadruped's creature files walk exactly as the built-in bodies (same state hash); a six-legged
+// creature walks the gait derived from its body; a gait file for it, a body that contradicts
+// --character and a bad file are refused with the file and the field named (exit status 2).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
@@ -35,20 +35,27 @@ test('the shipped creature files walk as the built-in bodies, natively and as WA
   }
 });
 
-test('creatures the controller cannot walk yet, or that contradict --character, are refused', () => {
-  const quadruped = JSON.parse(fs.readFileSync(shipped('quadruped'), 'utf8'));
-  const middle = structuredClone(quadruped.legFrames[0]);
-  Object.assign(middle, { name: 'legframe.middle', z: 0 });
-  middle.legs.name = 'middle';
-  const hexapod = structuredClone(quadruped);
-  hexapod.legFrames = [quadruped.legFrames[0], middle, quadruped.legFrames[1]];
-  hexapod.spine = [{ ...quadruped.spine[0], to: 0.12, links: 2 }, { ...quadruped.spine[0], from: -0.12, links: 2 }];
-  const six = path.join(tmp, 'hexapod.json');
-  fs.writeFileSync(six, JSON.stringify(hexapod));
-  let r = run([...walk, '--creature', six]);
-  assert.equal(r.status, 2, r.stderr);
-  assert.match(r.stderr, /hexapod\.json: legFrames: 3 leg frames; the controller walks bodies of one or two so far/);
+test('a six-legged creature walks its derived gait, natively and as WASM', () => {
+  for (const cmd of [native, process.execPath]) {
+    const r = run(['walk', '--json', '--seconds', '12', '--speed', '0.4', '--creature', shipped('insect')], cmd);
+    assert.equal(r.status, 0, r.stderr);
+    const out = JSON.parse(r.stdout);
+    assert.equal(out.fell, false);
+    assert.equal(out.duty_factor_measured.length, 6);
+    assert.ok(Math.abs(out.mean_speed_m_s - 0.4) < 0.15 * 0.4, `${out.mean_speed_m_s} m/s`);
+  }
+});
 
+test('gait files for other bodies, bodies that contradict --character and bad files are refused', () => {
+  let r = run([...walk, '--creature', shipped('insect'), '--params', path.join(root, 'public/presets/quadruped.json')]);
+  assert.equal(r.status, 2, r.stderr);
+  assert.match(r.stderr, /gait files are for bodies of one or two leg frames; this one walks the gait derived from it/);
+
+  r = run([...walk, '--creature', shipped('insect'), '--character', 'quadruped']);
+  assert.equal(r.status, 2, r.stderr);
+  assert.match(r.stderr, /insect\.json: a body of 3 leg frames is neither a biped nor a quadruped: leave out --character/);
+
+  const quadruped = JSON.parse(fs.readFileSync(shipped('quadruped'), 'utf8'));
   r = run([...walk, '--creature', shipped('quadruped'), '--character', 'biped']);
   assert.equal(r.status, 2, r.stderr);
   assert.match(r.stderr, /walks as a quadruped, not as the biped --character names/);

@@ -27,6 +27,7 @@
 #include "api/options.h"
 #include "body/creature.h"
 #include "gait/defaults.h"
+#include "gait/derived_gait.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
@@ -74,7 +75,8 @@ const char* kWalkUsage =
     "  --creature FILE               the character's body from a creature file\n"
     "                                (public/creatures/*.json format); default: the shipped\n"
     "                                body. Its leg frames choose the character: one a biped,\n"
-    "                                two a quadruped (more are not walked yet)\n"
+    "                                two a quadruped; three or four walk a gait derived from\n"
+    "                                the body (gait files are refused for them)\n"
     "  --speed M_S                   goal speed, m/s, -5 to 5 (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s, -3 to 3 (default 0)\n"
     "  --heading RAD                 heading it starts facing, about +y (default 0: +z)\n"
@@ -194,8 +196,9 @@ int loadParamsOption(const std::string& path, std::optional<gait::Character> exp
 }
 
 // Loads a --creature file (body/creature.h); its leg frames choose the character, which must be
-// the one --character named, if it did. A refused file is reported as "gaitlab: FILE: FIELD:
-// WHAT" (exit status 2).
+// the one --character named, if it did: one leg frame a biped, two a quadruped, and more walk
+// with a gait derived from the body (gait/derived_gait.h) under the quadruped's controller. A
+// refused file is reported as "gaitlab: FILE: FIELD: WHAT" (exit status 2).
 int loadCreatureOption(const std::string& path, std::optional<gait::Character>* chosen, body::Morphology* out) {
   const auto refuse = [&](const std::string& why) {
     std::fprintf(stderr, "gaitlab: %s: %s\n", path.c_str(), why.c_str());
@@ -203,10 +206,9 @@ int loadCreatureOption(const std::string& path, std::optional<gait::Character>* 
   };
   if (const auto error = body::loadCreatureFile(path, out)) return refuse(error->describe());
   const size_t frames = out->legFrames.size();
-  // The controller's leg frames: the biped's one, the quadruped's two (gait/schema.h).
-  if (frames > 2)
-    return refuse("legFrames: " + std::to_string(frames) + " leg frames; the controller walks bodies of one or two so far");
   const gait::Character c = gait::characterOf(*out);
+  if (*chosen && frames > 2)
+    return refuse("a body of " + std::to_string(frames) + " leg frames is neither a biped nor a quadruped: leave out --character");
   if (*chosen && **chosen != c)
     return refuse("a body of " + std::to_string(frames) + " leg frame" + (frames == 1 ? "" : "s") + " walks as a " +
                   gait::characterName(c) + ", not as the " + gait::characterName(**chosen) + " --character names");
@@ -259,6 +261,15 @@ int walk(int argc, char** argv) {
   }
   gait::GaitFile file;
   gait::Gait gait;
+  const bool derived = w.body && w.body->legFrames.size() > 2;
+  if (derived) {
+    // Gait files describe a biped's or a quadruped's legs; other bodies walk a derived gait.
+    if (o.values.count("--params") || o.values.count("--gait-schedule"))
+      return api::usageError("walk", "--params, --gait-schedule: gait files are for bodies of one or two leg frames; "
+                                     "this one walks the gait derived from it");
+    gait = gait::Gait::single(gait::derivedGait(*w.body));
+    w.gait = &gait;
+  }
   if (o.values.count("--params")) {
     if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
     chosen = file.character;

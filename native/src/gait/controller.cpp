@@ -260,7 +260,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   // Stance legs per leg frame; swing legs first (§3.1.4–3.1.6), so that what they exert on the
   // leg frames is known when the stance legs are set.
   const int frames = static_cast<int>(m_.legFrames.size());
-  int stanceIn[kMaxLegFrames] = {0, 0};
+  int stanceIn[kMaxLegFrames] = {};
   for (size_t l = 0; l < m_.legs.size(); ++l) {
     const body::Leg& leg = m_.legs[l];
     const int li = static_cast<int>(l);
@@ -522,7 +522,9 @@ void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
 }
 
 int Controller::legFrameIndex(const body::Leg& leg) const {
-  return leg.legFrame == m_.legFrames[0] ? 0 : 1;
+  int f = 0;
+  while (m_.legFrames[f] != leg.legFrame) ++f;
+  return f;
 }
 
 Vector3d Controller::jointPivot(int segment, const CharacterState& s) const {
@@ -590,49 +592,56 @@ void Controller::limitToSupport(int l, const CharacterState& s, double load, Vec
 
 void Controller::spine(const CharacterState& s, Vector3d* torques) {
   // Spine joints hold the rest shape (§3.1.7), and the spine links are held up against gravity
-  // through both leg frames with weights that sum to one (§3.1.5; defect 5, defect 6: every
-  // link driven, targets are rotations).
+  // through the two leg frames either side of them, with weights that sum to one (§3.1.5;
+  // defect 5, defect 6: every link driven, targets are rotations). A body of more than two leg
+  // frames has a section of spine between each two (body/creature.h); each is held alike.
   const JointGains& k = params_.gains;
   const int n = static_cast<int>(m_.segments.size());
-  const int front = m_.legFrames[0], back = m_.legFrames[1];
-  // Joints along the spine, front to back: spine links, then the back leg frame.
-  int joints[body::kMaxSpineLinks + 1];
-  int count = 0;
-  for (int link : m_.spine) joints[count++] = link;
-  joints[count++] = back;
-  for (int j = 0; j < count; ++j) {
-    const int child = joints[j];
-    const BodyState& c = s.segments[child];
-    const BodyState& pa = s.segments[m_.segments[child].parent];
-    torques[child] += jointPd(k.spineKp, k.spineKd, pa.orientation, c.orientation,
-                              Quaterniond::Identity(), pa.angularVelocity, c.angularVelocity);
-  }
-  for (size_t li = 0; li < m_.spine.size(); ++li) {
-    const int link = m_.spine[li];
-    const SpineWeights w = spineGravityWeights(s.segments[back].position, s.segments[front].position,
-                                               s.segments[link].position);
-    // From the front leg frame: joints spine[0..li], crossed parent → child.
-    DofChain fromFront;
-    for (size_t j = 0; j <= li; ++j) {
-      const int child = m_.spine[j];
-      const Vector3d b = jointPivot(child, s);
-      fromFront.push(Vector3d::UnitX(), b, child);
-      fromFront.push(Vector3d::UnitY(), b, child);
-      fromFront.push(Vector3d::UnitZ(), b, child);
-    }
-    SegmentLoad load{m_.segments[link].mass, s.segments[link].position, fromFront.count, w.front};
-    accumulateGravityCompensation(fromFront, &load, 1, gravity_, torques, n);
-    // From the back leg frame: its joint, then spine links back to front, crossed child → parent.
-    DofChain fromBack;
-    for (int j = count - 1; j > static_cast<int>(li); --j) {
+  size_t first = 0;  // the section's first link in m_.spine
+  for (size_t f = 1; f < m_.legFrames.size(); ++f) {
+    const int front = m_.legFrames[f - 1], back = m_.legFrames[f];
+    // Joints along the section, front to back: its links (the segments between its two leg
+    // frames), then the back leg frame.
+    int joints[body::kMaxSpineLinks + 1];
+    int count = 0;
+    for (size_t i = first; i < m_.spine.size() && m_.spine[i] < back; ++i) joints[count++] = m_.spine[i];
+    const size_t links = static_cast<size_t>(count);
+    joints[count++] = back;
+    for (int j = 0; j < count; ++j) {
       const int child = joints[j];
-      const Vector3d b = jointPivot(child, s);
-      fromBack.push(Vector3d::UnitX(), b, child, true);
-      fromBack.push(Vector3d::UnitY(), b, child, true);
-      fromBack.push(Vector3d::UnitZ(), b, child, true);
+      const BodyState& c = s.segments[child];
+      const BodyState& pa = s.segments[m_.segments[child].parent];
+      torques[child] += jointPd(k.spineKp, k.spineKd, pa.orientation, c.orientation,
+                                Quaterniond::Identity(), pa.angularVelocity, c.angularVelocity);
     }
-    load = {m_.segments[link].mass, s.segments[link].position, fromBack.count, w.back};
-    accumulateGravityCompensation(fromBack, &load, 1, gravity_, torques, n);
+    for (size_t li = 0; li < links; ++li) {
+      const int link = joints[li];
+      const SpineWeights w = spineGravityWeights(s.segments[back].position, s.segments[front].position,
+                                                 s.segments[link].position);
+      // From the front leg frame: the section's joints up to this link's, crossed parent → child.
+      DofChain fromFront;
+      for (size_t j = 0; j <= li; ++j) {
+        const int child = joints[j];
+        const Vector3d b = jointPivot(child, s);
+        fromFront.push(Vector3d::UnitX(), b, child);
+        fromFront.push(Vector3d::UnitY(), b, child);
+        fromFront.push(Vector3d::UnitZ(), b, child);
+      }
+      SegmentLoad load{m_.segments[link].mass, s.segments[link].position, fromFront.count, w.front};
+      accumulateGravityCompensation(fromFront, &load, 1, gravity_, torques, n);
+      // From the back leg frame: its joint, then the links back to this one, crossed child → parent.
+      DofChain fromBack;
+      for (int j = count - 1; j > static_cast<int>(li); --j) {
+        const int child = joints[j];
+        const Vector3d b = jointPivot(child, s);
+        fromBack.push(Vector3d::UnitX(), b, child, true);
+        fromBack.push(Vector3d::UnitY(), b, child, true);
+        fromBack.push(Vector3d::UnitZ(), b, child, true);
+      }
+      load = {m_.segments[link].mass, s.segments[link].position, fromBack.count, w.back};
+      accumulateGravityCompensation(fromBack, &load, 1, gravity_, torques, n);
+    }
+    first += links;
   }
 }
 

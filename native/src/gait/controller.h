@@ -89,7 +89,7 @@ class Controller {
   // `dt`: the step, for the swing targets' rates (swingTargetRate).
   void swingLeg(int leg, const CharacterState& s, double dt, double yaw,
                 const Eigen::Vector3d& velocity, Eigen::Vector3d* torques);
-  int legFrameIndex(const body::Leg& leg) const;  // 0 front/only, 1 back
+  int legFrameIndex(const body::Leg& leg) const;  // its leg frame's place in m_.legFrames, front first
   Eigen::Vector3d jointPivot(int segment, const CharacterState& s) const;  // world, now
   DofChain legChain(int leg, const CharacterState& s) const;
   void kneePd(int leg, const CharacterState& s, double flexionWanted, Eigen::Vector3d* torques,
@@ -170,7 +170,7 @@ class Controller {
   // Per segment: a leg joint's orientation relative to its parent as it came to a stand (the
   // table's pose; identity for the other segments).
   std::vector<Eigen::Quaterniond> standPose_;
-  double standHeight_[kMaxLegFrames] = {0, 0};  // m, each leg frame above the ground as it came to a stand
+  double standHeight_[kMaxLegFrames] = {};  // m, each leg frame above the ground as it came to a stand
   Eigen::Vector3d trimmedVelocity() const {
     return desiredVelocity_ + hold_ + Eigen::Vector3d(0, 0, speedTrim_ + speedCorrection_);
   }

@@ -6,8 +6,11 @@
 
 namespace gaitlab::gait {
 
-constexpr int kMaxLegFrames = 2;
-constexpr int kMaxLegs = 4;
+// The most leg frames and legs a body may have (creature files, body/creature.h: up to four pairs
+// of legs, each pair on its own leg frame). The gait schema names the biped's one leg frame and the
+// quadruped's two (gait/schema.h).
+constexpr int kMaxLegFrames = 4;
+constexpr int kMaxLegs = 8;
 
 struct LegFrameParams {
   // Motion graphs over the gait phase Φ (§3.1.3): the leg frame's desired orientation in the

@@ -31,7 +31,7 @@ struct StanceForceSettings {
   double minNormal = 1.0;
 };
 
-constexpr int kMaxStanceFeet = 4;
+constexpr int kMaxStanceFeet = 8;
 
 // Forces f_i (world, N, exerted BY the ground ON the body through foot i at `points[i]`) that
 // best give the body the force `force` and the torque `torque` about `com`:

@@ -187,7 +187,7 @@ void Controller::plantedStance(const CharacterState& s, Vector3d* torques) {
   Vector3d points[kMaxStanceFeet], forces[kMaxStanceFeet];
   const int count = shareWeight(s, points, forces);
 
-  int legsOfFrame[kMaxLegFrames] = {0, 0};
+  int legsOfFrame[kMaxLegFrames] = {};
   for (const body::Leg& leg : m_.legs) ++legsOfFrame[legFrameIndex(leg)];
   for (int l = 0; l < count; ++l) {
     const body::Leg& leg = m_.legs[l];

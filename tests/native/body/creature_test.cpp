@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include "gait/derived_gait.h"
 #include "sim/walk_trial.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -109,6 +112,60 @@ TEST(Creature, TheShippedFilesWalkAsTheBuiltInBodies) {
     heavier.segments[heavier.legs[0].upper].mass *= 1.1;
     w.body = &heavier;
     EXPECT_NE(sim::runWalk(w).stateHash, builtIn) << name;
+  }
+}
+
+// A first gait for a body of any leg count: two alternating groups of legs (alternating tripods on
+// six legs, tetrapods on eight), each leg down for more than half the cycle, the period scaled to
+// the legs' length by dynamic similarity.
+TEST(Creature, TheDerivedGaitAlternatesTwoGroupsOfLegs) {
+  for (const char* name : {"insect", "spider"}) {
+    Morphology m;
+    ASSERT_FALSE(parseCreatureFile(readText(std::string("public/creatures/") + name + ".json"), &m));
+    const gait::GaitParams p = gait::derivedGait(m);
+    for (size_t l = 0; l < m.legs.size(); ++l) {
+      const int pair = static_cast<int>(l / 2), side = static_cast<int>(l % 2);
+      EXPECT_EQ(p.legs[l].stepTrigger, (pair + side) % 2 == 0 ? 0.0 : 0.5) << name << " leg " << m.legs[l].name;
+      EXPECT_GT(p.legs[l].dutyFactor, 0.5);
+    }
+  }
+  // The insect's left front, right middle and left back legs lift together.
+  Morphology insect;
+  ASSERT_FALSE(parseCreatureFile(readText("public/creatures/insect.json"), &insect));
+  EXPECT_EQ(insect.legs[0].name, "front.left");
+  EXPECT_EQ(insect.legs[3].name, "middle.right");
+  // Legs twice as long: a period √2 as long, steps twice as high.
+  json doc = json::parse(readText("public/creatures/insect.json"));
+  for (json& f : doc["legFrames"]) f["legs"]["upper"]["length"] = 0.44, f["legs"]["lower"]["length"] = 0.44;
+  Morphology tall;
+  ASSERT_FALSE(parseCreatureFile(doc.dump(), &tall));
+  const gait::GaitParams a = gait::derivedGait(insect), b = gait::derivedGait(tall);
+  EXPECT_NEAR(b.period / a.period, std::sqrt(2.0), 1e-9);
+  const auto highest = [](const gait::MotionGraph& g) { return *std::max_element(g.knots, g.knots + gait::MotionGraph::kKnots); };
+  ASSERT_GT(highest(a.legFrames[2].stepHeight), 0.0);
+  EXPECT_NEAR(highest(b.legFrames[2].stepHeight) / highest(a.legFrames[2].stepHeight), 2.0, 1e-9);
+}
+
+// The shipped creatures of three and four leg frames walk their derived gait with the controller
+// every body shares (the walking benchmark's criteria, bench/results/walking-creatures.md, run
+// them for 60 s; here 20 s at its two speeds).
+TEST(Creature, TheShippedCreaturesWalkTheGaitDerivedFromThem) {
+  for (const char* name : {"insect", "spider", "dragon"}) {
+    Morphology m;
+    ASSERT_FALSE(parseCreatureFile(readText(std::string("public/creatures/") + name + ".json"), &m));
+    const gait::Gait gait = gait::Gait::single(gait::derivedGait(m));
+    for (double speed : {0.4, 0.8}) {
+      sim::WalkOptions w;
+      w.character = gait::characterOf(m);
+      w.body = &m;
+      w.gait = &gait;
+      w.speed = speed;
+      w.seconds = 20;
+      const sim::WalkResult r = sim::runWalk(w);
+      EXPECT_FALSE(r.fell) << name << " at " << speed << " m/s fell at " << r.fallTime << " s";
+      EXPECT_NEAR(r.meanSpeed, speed, 0.15 * speed) << name;
+      EXPECT_LT(r.headingDrift, 10.0) << name;
+    }
   }
 }
 

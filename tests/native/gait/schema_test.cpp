@@ -27,19 +27,24 @@ int slotOf(const GaitParams& p, const double* field) {
   return static_cast<int>(field - reinterpret_cast<const double*>(&p));
 }
 
-// Slots a character does not use: the biped has one leg frame, two legs and no spine.
+// Slots a character does not use: the leg frames and legs beyond its own (GaitParams has room for
+// the bodies of creature files, up to kMaxLegFrames leg frames), and the biped's spine gains (it
+// has no spine).
 std::set<int> unusedSlots(Character c) {
   std::set<int> unused;
-  if (c == Character::Quadruped) return unused;
   GaitParams p;
   const auto range = [&](const void* begin, size_t bytes) {
     const int first = slotOf(p, static_cast<const double*>(begin));
     for (int i = 0; i < static_cast<int>(bytes / sizeof(double)); ++i) unused.insert(first + i);
   };
-  range(&p.legFrames[1], sizeof(LegFrameParams));
-  range(&p.legs[2], 2 * sizeof(LegParams));
-  range(&p.gains.spineKp, sizeof(double));
-  range(&p.gains.spineKd, sizeof(double));
+  const bool biped = c == Character::Biped;
+  const int frames = biped ? 1 : 2, legs = 2 * frames;
+  range(&p.legFrames[frames], (kMaxLegFrames - frames) * sizeof(LegFrameParams));
+  range(&p.legs[legs], (kMaxLegs - legs) * sizeof(LegParams));
+  if (biped) {
+    range(&p.gains.spineKp, sizeof(double));
+    range(&p.gains.spineKd, sizeof(double));
+  }
   return unused;
 }
 

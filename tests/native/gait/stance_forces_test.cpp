@@ -98,7 +98,7 @@ TEST(StanceForces, RefusesACountOutOfRange) {
   Vector3d out[1] = {Vector3d(7, 7, 7)};
   EXPECT_FALSE(distributeStanceForces(kCom, Vector3d::UnitY(), Vector3d::Zero(), kFeet, 0,
                                       StanceForceSettings{}, out));
-  EXPECT_FALSE(distributeStanceForces(kCom, Vector3d::UnitY(), Vector3d::Zero(), kFeet, 5,
+  EXPECT_FALSE(distributeStanceForces(kCom, Vector3d::UnitY(), Vector3d::Zero(), kFeet, gaitlab::gait::kMaxStanceFeet + 1,
                                       StanceForceSettings{}, out));
   EXPECT_EQ(out[0], Vector3d(7, 7, 7));
 }

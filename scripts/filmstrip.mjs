@@ -7,6 +7,8 @@
 //                              [--speed M_S] [--gait walk|trot|pace] [--out docs/images/biped-gait.png]
 //                              [--patch '{"period": 0.6}']   (an edit of the gait, as the editors make)
 //                              [--params FILE]   (a gait file, given to the page as a link carries one)
+//   node scripts/filmstrip.mjs --creature insect [...]   (a shipped creature, public/creatures/insect.json,
+//                                                         alone in the scene: ?characters=0&creature=insect)
 //
 // Needs the WASM build (npm run build) and Chromium (CHROMIUM=/path overrides /usr/bin/chromium).
 import fs from 'node:fs';
@@ -31,6 +33,7 @@ try {
   ({ values: args } = parseArgs({
     options: {
       type: { type: 'string' },
+      creature: { type: 'string' },
       frames: { type: 'string', default: '8' },
       every: { type: 'string', default: '12' },
       warmup: { type: 'string', default: '480' },
@@ -44,7 +47,13 @@ try {
 } catch (error) {
   usage(error.message);
 }
-if (args.type !== 'biped' && args.type !== 'quadruped') usage('--type must be biped or quadruped');
+if (args.creature !== undefined) {
+  if (args.type !== undefined || args.gait || args.patch || args.params) usage('--creature takes none of --type, --gait, --patch, --params');
+  if (!fs.existsSync(path.join(repoDir, 'public', 'creatures', `${args.creature}.json`))) usage(`--creature: no public/creatures/${args.creature}.json`);
+} else if (args.type !== 'biped' && args.type !== 'quadruped') usage('--type must be biped or quadruped');
+// A creature is seen and framed as the quadruped is.
+const creature = args.creature;
+const view = creature ? 'quadruped' : args.type;
 const count = (name, min, max) => {
   const v = Number(args[name]);
   if (!Number.isInteger(v) || v < min || v > max) usage(`--${name} must be an integer in [${min}, ${max}]`);
@@ -53,7 +62,7 @@ const count = (name, min, max) => {
 const frames = count('frames', 1, 24), every = count('every', 1, 1200), warmup = count('warmup', 0, 12000);
 const speed = args.speed === undefined ? null : Number(args.speed);
 if (speed !== null && !(Number.isFinite(speed) && speed >= 0 && speed <= 5)) usage('--speed must be in [0, 5] m/s (the goal speeds the CLI takes)');
-const out = path.resolve(args.out ?? path.join(repoDir, 'docs', 'images', `${args.type}-gait.png`));
+const out = path.resolve(args.out ?? path.join(repoDir, 'docs', 'images', `${creature ?? args.type}-gait.png`));
 
 // A gait file reaches the page as a share link carries one, made by the page's own codec
 // (web/src/share/link.ts, loaded through Vite): the page decodes it and the module judges it.
@@ -76,8 +85,8 @@ try {
   page.on('pageerror', (error) => console.error(`page error: ${error.message}`));
   // The mixed crowd alternates biped, quadruped, …: one character for a biped, two for a
   // quadruped (the other then walks beside it, a grid place away).
-  const crowd = args.type === 'biped' ? 1 : 2;
-  await page.goto(`${server.url}?characters=${crowd}&paused=1&threads=1${hash}`, { waitUntil: 'load' });
+  const crowd = creature ? 0 : args.type === 'biped' ? 1 : 2;
+  await page.goto(`${server.url}?characters=${crowd}&paused=1&threads=1${creature ? `&creature=${creature}` : ''}${hash}`, { waitUntil: 'load' });
   await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null,
     { timeout: 120_000, polling: 250 });
   const error = await page.evaluate(() => window.gaitlab.stats().error);
@@ -93,9 +102,12 @@ try {
     await page.waitForTimeout(400); // the next animation frames draw the newest state
   };
   await stepBy(1);
+  if (creature) {  // the page fetches its file, then spawns it
+    await page.waitForFunction(() => window.gaitlab.characters().length > 0, null, { timeout: 30_000, polling: 100 });
+  }
   const characters = await page.evaluate(() => window.gaitlab.characters());
-  const subject = characters.find((c) => c.type === args.type);
-  if (!subject) throw new Error(`no ${args.type} in the scene`);
+  const subject = creature ? characters[0] : characters.find((c) => c.type === args.type);
+  if (!subject) throw new Error(`no ${creature ?? args.type} in the scene`);
   if (gaitFile) {
     // The page applies a linked gait once the simulation has it; a refused link keeps the presets.
     const carried = async () => sameParams(await page.evaluate((id) => window.gaitlab.getGait(id), subject.id), gaitFile);
@@ -127,7 +139,7 @@ try {
   // The camera is put beside the character before every frame, seen from its left side (+x,
   // characters walk along +z), at a distance it keeps (the demo's follow key eases after the
   // character, and at 2.5 m/s lagged it out of the frame).
-  const side = args.type === 'biped' ? [6.5, 0.7, 0] : [4.2, 0.35, 0];
+  const side = view === 'biped' ? [6.5, 0.7, 0] : creature === 'dragon' ? [5.6, 0.35, 0] : [4.2, 0.35, 0];
   const lookAt = async () => {
     const here = (await page.evaluate(() => window.gaitlab.characters())).find((c) => c.id === subject.id);
     const to = [here.position[0], here.position[1], here.position[2]];
@@ -135,7 +147,7 @@ try {
     await page.evaluate(([a, b]) => window.gaitlab.view(a, b), [from, to]);
   };
 
-  const [w, h] = args.type === 'biped' ? [260, 380] : [400, 300];  // one frame, px
+  const [w, h] = view === 'biped' ? [260, 380] : [400, 300];  // one frame, px
   const shots = [];
   for (let f = 0; f < frames; ++f) {
     if (f > 0) await stepBy(every);
@@ -145,7 +157,7 @@ try {
     if (!at) throw new Error('the character is not on screen');
     // The character's screen position is its root leg frame's: the biped's trunk, the quadruped's
     // front leg frame, whose body trails behind it (to the right, seen from its left side).
-    const clip = { x: Math.max(0, at.x - w * (args.type === 'biped' ? 0.5 : 0.28)), y: Math.max(0, at.y - h * 0.32), width: w, height: h };
+    const clip = { x: Math.max(0, at.x - w * (view === 'biped' ? 0.5 : 0.28)), y: Math.max(0, at.y - h * 0.32), width: w, height: h };
     shots.push({ png: (await page.screenshot({ clip })).toString('base64'), t: simSteps / 120 });
     process.stderr.write(`frame ${f + 1}/${frames} at ${(simSteps / 120).toFixed(3)} s\n`);
   }

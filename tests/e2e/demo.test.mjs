@@ -246,6 +246,33 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.close();
   });
 
+  it('creatures by name: an insect and a spider from their files walk beside the crowd; a bad creature is refused with a message', { timeout: TEST_TIMEOUT }, async () => {
+    const { page: crowdOnly } = await openPage(`${server.url}?threads=1&paused=1&characters=2`);
+    const before = await ready(crowdOnly);
+    await crowdOnly.close();
+    const { page, problems } = await openPage(`${server.url}?threads=1&paused=1&characters=2&creature=insect,spider`);
+    await ready(page);
+    // The page fetches the files, then spawns them: 2 crowd characters and 2 creatures.
+    await page.waitForFunction(() => window.gaitlab.characters().length === 4, null, { timeout: PAGE_TIMEOUT, polling: 100 });
+    const start = await page.evaluate(() => window.gaitlab.characters());
+    const moved = await stepTo(page, 1200);  // 10 s
+    // Their bodies are drawn: the insect's 23 and the spider's 31 beside the crowd's scene.
+    assert.equal((await stats(page)).bodies - before.bodies, 23 + 31);
+    for (const c of start.slice(2)) {
+      const now = moved.find((m) => m.id === c.id);
+      assert.equal(now.fallen, false, `creature ${c.id} has not fallen`);
+      assert.ok(now.position[2] - c.position[2] > 3, `creature ${c.id} walked ${(now.position[2] - c.position[2]).toFixed(2)} m forward in 10 s`);
+    }
+    await page.screenshot({ path: path.join(resultsDir, 'creatures.png') });
+    // A creature file the module refuses is said on the page, with the field named.
+    const insect = fs.readFileSync(path.join(repoDir, 'public/creatures/insect.json'), 'utf8');
+    await page.evaluate((json) => window.gaitlab.spawnCreature(json.replace('"mass": 8', '"mass": -8'), 10, 0, 0.4), insect);
+    await page.waitForFunction(() => /legFrames\[0\]\.mass: -8(\.0)? is outside/.test(document.body.innerText), null, { timeout: PAGE_TIMEOUT, polling: 100 });
+    await page.waitForTimeout(700);  // a report after the refusal
+    assert.equal((await page.evaluate(() => window.gaitlab.characters())).length, 4, 'nothing was spawned from the refused file');
+    assert.deepEqual(problems, []);
+  });
+
   it('a thrown box hits a character and changes its motion; the crowd keeps running', { timeout: TEST_TIMEOUT }, async () => {
     // The same run from step 0 twice (the simulation is deterministic and Reset rebuilds the
     // scene from the same seed), the second time with a box thrown at a character.

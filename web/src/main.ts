@@ -84,6 +84,8 @@ function showError(title: string, detail: string): void {
 window.addEventListener('error', (event) => showError('Unexpected error', errorMessage(event.error ?? event.message)));
 window.addEventListener('unhandledrejection', (event) => showError('Unexpected error', errorMessage(event.reason)));
 
+/** The speed creatures spawned by name walk at, m/s (the quadruped's cruise speed, the walking criteria's first). */
+const CREATURE_SPEED = 0.4;
 const send = (command: SceneCommand) => client?.send({ type: 'scene', command });
 const selectedStatus = () => state.characters.find((c) => c.id === state.selected) ?? null;
 
@@ -289,6 +291,22 @@ if (!window.crossOriginIsolated) {
   );
   // A query parameter out of range runs with the nearest valid value, and says so.
   for (const note of queryNotes) overlay.message(note, 'problem');
+  // Creatures by name (`?creature=insect,spider`): the shipped creature files (public/creatures/),
+  // fetched once and spawned into every scene, in a row right of the crowd (or at the middle
+  // when there is no crowd), walking at the quadruped's cruise speed.
+  const creatureNames = (new URLSearchParams(location.search).get('creature') ?? '').split(',').filter((n) => n !== '');
+  const creatureFiles = Promise.all(creatureNames.map(async (name) => {
+    if (!/^[a-z0-9-]{1,40}$/.test(name)) throw new Error(`?creature=${name}: not a creature's name`);
+    const response = await fetch(new URL(`${import.meta.env.BASE_URL}creatures/${name}.json`, location.href));
+    if (!response.ok) throw new Error(`?creature=${name}: no such creature (creatures/${name}.json: ${response.status})`);
+    return response.text();
+  }));
+  const spawnCreatures = (crowd: number) => {
+    creatureFiles.then((files) => files.forEach((json, k) => {
+      const x = crowd === 0 ? (k - (files.length - 1) / 2) * 2.5 : 6 + 2.5 * k;
+      send({ type: 'spawnCreature', json, x, z: 0, heading: 0, speed: CREATURE_SPEED });
+    }), (error: unknown) => overlay.message(error instanceof Error ? error.message : String(error), 'problem'));
+  };
   let framed = false;
   // Gaits in and out of the page (links, files), judged by the module in the sim worker.
   const transfer = new GaitTransfer((json) => client!.normalize(json));
@@ -304,6 +322,7 @@ if (!window.crossOriginIsolated) {
       select(null);
       console.info(`gaitlab ${info.version}: scene ${info.generation}, ${reader.capacity} body slots, ${info.threads} threads`);
       if (!gaits) gaits = GaitEditors.create(info.schema, client!, transfer, panel.gaitFolder, overlay);
+      spawnCreatures(options.characters);
       if (!optimizer && gaits && info.optimizerSchema) optimizer = createOptimizePanel(info.optimizerSchema);
     },
     onRelease: () => crowd.detach(),

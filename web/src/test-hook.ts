@@ -62,6 +62,12 @@ export interface GaitlabHook {
   /** The gait the editors show, or null before they have one. */
   editorGait(): GaitFile | null;
   throwBox(target: Vec3): void;
+  /**
+   * A character whose body is a creature file's text (public/creatures/*.json) at (x, z), walking
+   * at `speed` m/s: the page's `?creature=NAME` does the same with a shipped file. A refused file
+   * is shown on the page as every refused command is.
+   */
+  spawnCreature(json: string, x: number, z: number, speed: number): void;
   setGoal(id: number | 'all', goal: { speed: number; turn: number }): void;
   select(id: number | null): void;
   /** `count` fixed steps while paused. */
@@ -171,6 +177,7 @@ export function installTestHook(host: TestHookHost): GaitlabHook {
     editGait: async (patch) => editors().editAsGesture(patch),
     editorGait: () => host.editors()?.editorGait ?? null,
     throwBox: (target) => host.throwBox(target),
+    spawnCreature: (json, x, z, speed) => host.send({ type: 'spawnCreature', json, x, z, heading: 0, speed }),
     setGoal: (id, goal) => host.send({ type: 'setGoal', id, speed: goal.speed, turn: goal.turn }),
     select: (id) => host.select(id),
     step: (count) => host.control({ type: 'step', count }),

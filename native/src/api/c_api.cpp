@@ -14,6 +14,7 @@
 #include "api/cli_bench.h"
 #include "api/handles.h"
 #include "api/limits.h"
+#include "body/creature.h"
 #include "body/morphology.h"
 #include "sim/capacity.h"
 #include "gait/defaults.h"
@@ -129,8 +130,20 @@ int benchMaxCharacters(int legs) {
   return static_cast<int>(std::min<int64_t>(render, heap));
 }
 
+// Gait files name the legs of a biped or a quadruped (gait/schema.h): a creature of more leg
+// frames (gl_sim_spawn_creature) walks the gait derived from its body and takes none.
+bool takesGaitFiles(const Simulation& simulation, int i) {
+  return simulation.character(i).morphology().legFrames.size() <= 2;
+}
+std::string takesNoGaitFile(const Simulation& simulation, int i, int characterId) {
+  return "id: character " + str(characterId) + " has a body of " +
+         str(static_cast<int>(simulation.character(i).morphology().legFrames.size())) +
+         " leg frames, which walks the gait derived from it and takes no gait file";
+}
+
 // The characters a parameter call addresses: the one with id `characterId`, or with -1 every
-// character of `kind` (whose gait::Character goes to `out`). Returns GL_OK or the refusal.
+// character of `kind` (whose gait::Character goes to `out`; creatures that take no gait file left
+// out). Returns GL_OK or the refusal.
 int targetsOf(const Simulation& simulation, int characterId, int kind, gaitlab::gait::Character* out,
               std::vector<int>* targets) {
   using namespace gaitlab::gait;
@@ -138,13 +151,14 @@ int targetsOf(const Simulation& simulation, int characterId, int kind, gaitlab::
   const Character c = *out;
   if (characterId < 0) {
     for (int i = 0; i < simulation.characterCount(); ++i) {
-      if (characterOf(simulation.character(i).morphology()) == c) targets->push_back(i);
+      if (characterOf(simulation.character(i).morphology()) == c && takesGaitFiles(simulation, i)) targets->push_back(i);
     }
     if (targets->empty()) return refuse(GL_ERR_NO_CHARACTER, std::string("id: -1, and no ") + characterName(c) + " is in the simulation");
     return GL_OK;
   }
   const int i = simulation.characterIndex(characterId);
   if (i < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(characterId));
+  if (!takesGaitFiles(simulation, i)) return refuse(GL_ERR_KIND, takesNoGaitFile(simulation, i, characterId));
   if (characterOf(simulation.character(i).morphology()) != c)
     return refuse(GL_ERR_KIND, "kind: character " + str(characterId) + " is not a " + characterName(c));
   targets->push_back(i);
@@ -229,6 +243,20 @@ int gl_sim_add_apart(void* s, int kind) {
   if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(GL_ERR_ARGUMENT, notACharacter(kind));
   const int id = sim(s)->addApart(static_cast<Character>(kind));
   if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, kind));
+  return id;
+}
+
+int gl_sim_spawn_creature(void* s, const char* creatureJson, double x, double z, double heading) {
+  using namespace gaitlab::limits;
+  for (const std::string& e : {outOfRange("x", x, kMaxCoordinate), outOfRange("z", z, kMaxCoordinate),
+                               outOfRange("heading", heading, kMaxHeading)}) {
+    if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
+  }
+  gaitlab::body::Morphology body;
+  if (const auto error = gaitlab::body::parseCreatureFile(creatureJson ? creatureJson : "", &body))
+    return refuse(GL_ERR_ARGUMENT, "creature: " + error->describe());
+  const int id = sim(s)->spawnCreature(body, x, z, heading);
+  if (id < 0) return refuse(GL_ERR_FULL, "no room for the creature's " + str(static_cast<int>(body.segments.size())) + " bodies");
   return id;
 }
 
@@ -320,6 +348,7 @@ const char* gl_sim_get_params(void* s, int characterId) {
   const Simulation& simulation = *sim(s);
   const int i = simulation.characterIndex(characterId);
   if (i < 0) return refuse<const char*>(nullptr, noCharacter(characterId));
+  if (!takesGaitFiles(simulation, i)) return refuse<const char*>(nullptr, takesNoGaitFile(simulation, i, characterId));
   handle(s)->text = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).gait());
   return handle(s)->text.c_str();
 }

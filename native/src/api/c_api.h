@@ -143,6 +143,14 @@ GL_EXPORT int gl_sim_add_characters(void* sim, int kind, int count);
 // optimize panel's learner). No goal is set. Returns its id, or an error as gl_sim_spawn.
 GL_EXPORT int gl_sim_add_apart(void* sim, int kind);
 
+// Spawns a character whose body is the creature file `creatureJson` (body/creature.h,
+// public/creatures/*.json) standing at (x, z), facing `heading`: a body of one or two leg frames
+// walks the biped's or the quadruped's preset, one of three or four the gait derived from it
+// (gait/derived_gait.h). No goal is set. Returns its id; GL_ERR_ARGUMENT for a refused file (the
+// message names the field, "creature: legFrames[1].mass: ...") or a position or heading as
+// gl_sim_spawn refuses them, GL_ERR_FULL when there is no room for its bodies.
+GL_EXPORT int gl_sim_spawn_creature(void* sim, const char* creatureJson, double x, double z, double heading);
+
 // The demo page's scene: gl_sim_add_characters(sim, GL_LAYOUT_ALTERNATING, characters) on a new
 // simulation, plus a few boxes dropped at places drawn from the seed. GL_OK, or GL_ERR_ARGUMENT
 // for a negative count.
@@ -194,7 +202,9 @@ GL_EXPORT const char* gl_preset_json(int kind);
 // Validates a gait file for `kind` and gives it to the character with id `characterId` (as
 // returned by gl_sim_spawn), or with characterId = -1 to every character of that kind. Nothing
 // changes unless the whole file is valid. GL_OK; GL_ERR_KIND, GL_ERR_NO_CHARACTER, or
-// GL_ERR_INVALID_PARAMS ("FIELD: WHAT" for a refused file).
+// GL_ERR_INVALID_PARAMS ("FIELD: WHAT" for a refused file). A creature of more than two leg frames
+// (gl_sim_spawn_creature) takes no gait file: it is not among "every character of that kind", and
+// named by its id it is refused with GL_ERR_KIND (so too in gl_sim_patch_params).
 GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char* json);
 
 // An edit: `patch` is a JSON object {"<name>": number | [4 numbers], ...} of some parameters and
@@ -207,7 +217,8 @@ GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char
 GL_EXPORT int gl_sim_patch_params(void* sim, int characterId, int kind, const char* patch);
 
 // The gait parameters a character is using, as a gait file. The simulation's string; NULL if no
-// character has that id.
+// character has that id, or it is a creature of more than two leg frames (it walks the gait
+// derived from its body, which no gait file describes).
 GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
 
 // ---- Interaction: the demo page's commands --------------------------------------------------

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "api/limits.h"
+#include "gait/derived_gait.h"
 #include "gait/heading.h"
 #include "sim/capacity.h"
 #include "sim/state_hash.h"
@@ -67,8 +68,24 @@ int Simulation::spawnBox(double x, double z, double heading) {
 }
 
 int Simulation::spawnCharacter(Character kind, double x, double z, double heading, int shard) {
-  const body::Morphology& m = kind == Character::Biped ? biped_ : quadruped_;
   if (characterRoom(kind) < 1) return -1;
+  return spawnBody(kind == Character::Biped ? biped_ : quadruped_, kind, x, z, heading, shard);
+}
+
+int Simulation::spawnCreature(const body::Morphology& morphology, double x, double z, double heading) {
+  if (creatureRoom(morphology) < 1) return -1;
+  creatures_.push_back(morphology);
+  const body::Morphology& m = creatures_.back();
+  const int id = spawnBody(m, gait::characterOf(m), x, z, heading, shards_.leastPopulated());
+  if (id < 0) {
+    creatures_.pop_back();
+    return -1;
+  }
+  if (m.legFrames.size() > 2) agents_.back()->controller.setGait(gait::Gait::single(gait::derivedGait(m)));
+  return id;
+}
+
+int Simulation::spawnBody(const body::Morphology& m, Character kind, double x, double z, double heading, int shard) {
   const int id = ids_.create(characterCount());
   if (id < 0) return -1;
   physics::World& world = shards_.world(shard);
@@ -145,11 +162,21 @@ int heapRoom(int64_t bytes, int bodies, int worldBodies) {
 }  // namespace
 
 int Simulation::characterRoom(Character kind) const {
-  const int segments = static_cast<int>((kind == Character::Biped ? biped_ : quadruped_).segments.size());
+  return roomFor(kind == Character::Biped ? biped_ : quadruped_, bytesOf(static_cast<int>(kind)));
+}
+
+int Simulation::creatureRoom(const body::Morphology& m) const {
+  // Its memory as the quadruped's (sim/capacity.h), in proportion to its bodies.
+  const int64_t perSegment = kQuadrupedBytes / static_cast<int64_t>(quadruped_.segments.size());
+  return roomFor(m, perSegment * static_cast<int64_t>(m.segments.size()));
+}
+
+int Simulation::roomFor(const body::Morphology& m, int64_t bytes) const {
+  const int segments = static_cast<int>(m.segments.size());
   const int render = (kRenderCapacity - render_.count()) / segments;
   // Every body of the scene counts towards the world's solver pools: one shard's world holds at
   // most all of them.
-  return std::max(0, std::min({render, ids_.room(), heapRoom(bytesOf(static_cast<int>(kind)), segments, render_.count())}));
+  return std::max(0, std::min({render, ids_.room(), heapRoom(bytes, segments, render_.count())}));
 }
 
 int Simulation::boxRoom() const {

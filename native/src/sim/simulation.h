@@ -16,6 +16,7 @@
 // the crowd use). indexOf and idOf convert.
 #pragma once
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <utility>
@@ -57,6 +58,13 @@ class Simulation {
   // (body/creature.h, `gaitlab walk --creature`) instead of the shipped one. It must have the
   // kind's leg frames (gait::characterOf).
   void setBody(Character kind, const body::Morphology& morphology);
+  // Spawns a character with a creature file's body (body/creature.h) standing at (x, z): one or
+  // two leg frames walk the biped's or the quadruped's preset, more the gait derived from the
+  // body (gait/derived_gait.h). It starts without a goal. Returns its id, or -1 if there is no
+  // room for its bodies (creatureRoom).
+  int spawnCreature(const body::Morphology& morphology, double x, double z, double heading);
+  // How many more characters of this body the simulation can take now (as characterRoom).
+  int creatureRoom(const body::Morphology& morphology) const;
   int spawnBox(double x, double z, double heading);
   // `count` characters (Crowd::Mixed: biped and quadruped in turn, a biped first) in the next
   // free places of the demo page's layout (SceneLayout), each walking forward at its type's
@@ -213,6 +221,10 @@ class Simulation {
 
  private:
   int spawnCharacter(Character kind, double x, double z, double heading, int shard);
+  // A character of body `m` (which must outlive it) and `kind` in `shard`: spawnCharacter's and
+  // spawnCreature's common part. -1 if no id is free.
+  int spawnBody(const body::Morphology& m, Character kind, double x, double z, double heading, int shard);
+  int roomFor(const body::Morphology& m, int64_t bytes) const;
   void publish() { render_.publish(stepIndex(), time()); }
   void applyDrag();     // interaction.cpp: the drag spring, before the physics of a step
   void updateFallen();  // interaction.cpp: fall times and the automatic reset, after it
@@ -223,6 +235,9 @@ class Simulation {
 
   uint32_t seed_;
   body::Morphology biped_, quadruped_;
+  // The bodies of creatures spawned (spawnCreature), one per spawn: a deque, so that the agents'
+  // references to them stay valid as more are added.
+  std::deque<body::Morphology> creatures_;
   PhysicsShards shards_;
   // Declared after the shards: characters leave the worlds before the worlds are destroyed.
   std::vector<std::unique_ptr<Agent>> agents_;  // in spawn order: the controller loop's order

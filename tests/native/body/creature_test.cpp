@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "api/c_api.h"
+
 #include "gait/derived_gait.h"
+#include "sim/simulation.h"
 #include "sim/walk_trial.h"
 
 #include <algorithm>
@@ -167,6 +170,49 @@ TEST(Creature, TheShippedCreaturesWalkTheGaitDerivedFromThem) {
       EXPECT_LT(r.headingDrift, 10.0) << name;
     }
   }
+}
+
+// Creatures in a simulation, as the page spawns them (gl_sim_spawn_creature): an insect and a
+// spider beside a quadruped walk, and the run is the same on one thread as on two.
+TEST(Creature, CreaturesWalkInASimulationAlikeOnAnyNumberOfThreads) {
+  Morphology insect, spider;
+  ASSERT_FALSE(parseCreatureFile(readText("public/creatures/insect.json"), &insect));
+  ASSERT_FALSE(parseCreatureFile(readText("public/creatures/spider.json"), &spider));
+  std::string hashes[2];
+  for (int threads : {1, 2}) {
+    sim::Simulation sim(threads, 7);
+    ASSERT_GE(sim.spawnCreature(insect, -2, 0, 0), 0);
+    ASSERT_GE(sim.spawnCreature(spider, 0, 0, 0), 0);
+    ASSERT_GE(sim.spawn(gait::Character::Quadruped, 2, 0, 0), 0);
+    for (int i = 0; i < sim.characterCount(); ++i) sim.setGoal(i, {0.5, 0.0});
+    sim.step(1200);  // 10 s
+    for (int i = 0; i < sim.characterCount(); ++i) {
+      EXPECT_FALSE(sim.fallen(i)) << "character " << i << " on " << threads << " threads";
+      EXPECT_GT(sim.character(i).segmentState(sim.character(i).morphology().legFrames[0]).position.z(), 3.0) << i;
+    }
+    EXPECT_EQ(sim.character(0).morphology().legs.size(), 6u);
+    hashes[threads - 1] = sim.stateHash();
+  }
+  EXPECT_EQ(hashes[0], hashes[1]);
+}
+
+// Through the C ABI, as the page does it: a six-legged creature is spawned from its file's text, and
+// gait files, which name a quadruped's four legs, neither reach it by kind nor by its id.
+TEST(Creature, ACreatureOfThreeLegFramesTakesNoGaitFile) {
+  void* s = gl_sim_create(1, 1);
+  const std::string insect = readText("public/creatures/insect.json");
+  const int id = gl_sim_spawn_creature(s, insect.c_str(), 0, 0, 0);
+  ASSERT_GE(id, 0) << gl_last_error();
+  const int dog = gl_sim_spawn(s, GL_KIND_QUADRUPED, 3, 0, 0);
+  const char* preset = gl_preset_json(GL_KIND_QUADRUPED);
+  EXPECT_EQ(gl_sim_set_params(s, id, GL_KIND_QUADRUPED, preset), GL_ERR_KIND);
+  EXPECT_NE(std::string(gl_last_error()).find("has a body of 3 leg frames"), std::string::npos) << gl_last_error();
+  EXPECT_EQ(gl_sim_get_params(s, id), nullptr);
+  const std::string before = gl_sim_get_params(s, dog);
+  EXPECT_EQ(gl_sim_patch_params(s, -1, GL_KIND_QUADRUPED, "{\"period\": 0.31}"), GL_OK);  // the dog only
+  EXPECT_NE(std::string(gl_sim_get_params(s, dog)), before);
+  EXPECT_EQ(gl_sim_step(s, 240), GL_OK);
+  gl_sim_destroy(s);
 }
 
 TEST(Creature, ABadFileIsRefusedWithTheFieldNamed) {

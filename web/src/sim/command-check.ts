@@ -15,6 +15,7 @@ import {
   MAX_DRAG_LOCAL,
   MAX_GOAL_SPEED,
   MAX_GOAL_TURN,
+  MAX_HEADING,
   MAX_JSON_ARRAY,
   MAX_JSON_BYTES,
   MAX_JSON_STRING,
@@ -167,6 +168,14 @@ const SCENE_RULES: Record<SceneCommand['type'], (c: Fields) => SceneCommand> = {
   resetFallen: () => ({ type: 'resetFallen' }),
   remove: (c) => ({ type: 'remove', id: id(c.id) }),
   add: (c) => ({ type: 'add', kind: oneOf(c.kind, 'kind', CHARACTER_TYPES), count: integer(c.count, 'count', 0, 64) }),
+  spawnCreature: (c) => ({
+    type: 'spawnCreature',
+    json: jsonText(c.json, 'json'),
+    x: number(c.x, 'x', -MAX_COORDINATE, MAX_COORDINATE),
+    z: number(c.z, 'z', -MAX_COORDINATE, MAX_COORDINATE),
+    heading: number(c.heading, 'heading', -MAX_HEADING, MAX_HEADING),
+    speed: number(c.speed, 'speed', -MAX_GOAL_SPEED, MAX_GOAL_SPEED),
+  }),
   autoReset: (c) => ({ type: 'autoReset', seconds: number(c.seconds, 'seconds', 0, MAX_AUTO_RESET) }),
   setParams: (c) => ({ type: 'setParams', id: idOrAll(c.id), character: character(c.character), json: jsonText(c.json, 'json') }),
   patchParams: (c) => ({

@@ -37,6 +37,7 @@ export interface GaitlabModule {
   _gl_sim_room(sim: number, kind: number): number;
   _gl_sim_add_characters(sim: number, kind: number, count: number): number;
   _gl_sim_add_apart(sim: number, kind: number): number;
+  _gl_sim_spawn_creature(sim: number, creatureJson: number, x: number, z: number, heading: number): number;
   _gl_cruise_speed(kind: number): number;
   _gl_top_speed(kind: number): number;
   _gl_sim_demo_scene(sim: number, characters: number): number;
@@ -502,6 +503,16 @@ export class Simulation {
   }
 
   /** Sets parameters (gait file JSON) of `id`, or of every character of `kind` with id −1. */
+  /**
+   * Spawns a character whose body is a creature file's text (public/creatures/*.json) standing
+   * at (x, z), facing `heading`; it starts without a goal. Returns its id; a refused file throws a
+   * GaitlabError naming the field ("creature: FIELD: WHAT").
+   */
+  spawnCreature(json: string, x: number, z: number, heading: number): number {
+    return withString(this.module, json, (pointer) =>
+      this.check('gl_sim_spawn_creature', this.module._gl_sim_spawn_creature(this.sim, pointer, x, z, heading)));
+  }
+
   setParams(id: number, kind: number, json: string): void {
     withString(this.module, json, (pointer) =>
       this.check('gl_sim_set_params', this.module._gl_sim_set_params(this.sim, id, kind, pointer)));

@@ -68,6 +68,12 @@ export type SceneCommand =
   | { type: 'remove'; id: number }
   /** `count` new characters on the next free places of the crowd's grid. */
   | { type: 'add'; kind: CharacterType; count: number }
+  /**
+   * A character whose body is a creature file's text (public/creatures/*.json) standing at
+   * (x, z), facing `heading`, walking at `speed` m/s (gl_sim_spawn_creature). A refused file is
+   * said in a `commandError` naming the field.
+   */
+  | { type: 'spawnCreature'; json: string; x: number; z: number; heading: number; speed: number }
   /** Characters down for this long are reset automatically; 0 = never. */
   | { type: 'autoReset'; seconds: number }
   /**

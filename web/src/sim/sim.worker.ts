@@ -400,6 +400,15 @@ class WorkerScene {
         this.addCharacters(asked, Kind[command.kind]);  // says so itself if fewer fit after all
         return;
       }
+      case 'spawnCreature': {
+        if (sim.characterCount >= MAX_CHARACTERS) {
+          post({ type: 'commandError', message: `the crowd is at its limit: the page holds at most ${MAX_CHARACTERS} characters` });
+          return;
+        }
+        const id = sim.spawnCreature(command.json, command.x, command.z, command.heading);
+        sim.setGoal(id, command.speed, 0);
+        return;
+      }
       case 'autoReset':
         this.autoResetSeconds = Math.max(0, command.seconds);
         sim.setAutoReset(this.autoResetSeconds);

@@ -264,6 +264,7 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
       assert.ok(now.position[2] - c.position[2] > 3, `creature ${c.id} walked ${(now.position[2] - c.position[2]).toFixed(2)} m forward in 10 s`);
     }
     await page.screenshot({ path: path.join(resultsDir, 'creatures.png') });
+    assert.deepEqual(moved.map((c) => c.legs), [2, 4, 6, 8]);
     // A creature file the module refuses is said on the page, with the field named.
     const insect = fs.readFileSync(path.join(repoDir, 'public/creatures/insect.json'), 'utf8');
     await page.evaluate((json) => window.gaitlab.spawnCreature(json.replace('"mass": 8', '"mass": -8'), 10, 0, 0.4), insect);
@@ -271,6 +272,13 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
     await page.waitForTimeout(700);  // a report after the refusal
     assert.equal((await page.evaluate(() => window.gaitlab.characters())).length, 4, 'nothing was spawned from the refused file');
     assert.deepEqual(problems, []);
+    // Alone, a creature walks the gait derived from its body, which the gait editors (showing
+    // every quadruped's gait) neither read nor edit.
+    const { page: alone } = await openPage(`${server.url}?threads=1&characters=0&creature=insect`);
+    await ready(alone);
+    await alone.waitForFunction(() => window.gaitlab.characters().length === 1, null, { timeout: PAGE_TIMEOUT, polling: 100 });
+    await alone.waitForTimeout(1500);
+    assert.doesNotMatch(await alone.evaluate(() => document.body.innerText), /Could not read the gait/);
   });
 
   it('a thrown box hits a character and changes its motion; the crowd keeps running', { timeout: TEST_TIMEOUT }, async () => {

@@ -53,6 +53,29 @@ test('native and WASM `bench --json` print documents valid against bench/schema.
   }
 });
 
+test('a crowd of a creature (`bench --creature`): the same state in every mode and thread count, natively and as WASM', () => {
+  const args = ['bench', '--creature', 'public/creatures/insect.json', '--characters', '3', '--threads', '1,2',
+    '--mode', 'serial,controller,full', '--steps', '24', '--runs', '2', '--json'];
+  for (const [cmd, pre] of [[native, []], [process.execPath, ['bench/wasm.mjs']]]) {
+    const r = run(cmd, [...pre, ...args]);
+    assert.equal(r.status, 0, r.stderr);
+    const doc = JSON.parse(r.stdout);
+    assert.deepEqual(validate(doc), []);
+    assert.equal(doc.inputs.creature, 'insect');
+    assert.deepEqual(doc.inputs.legs, [6]);
+    assert.equal(doc.points.length, 5);
+    for (const p of doc.points) {
+      assert.equal(p.creature, 'insect');
+      assert.equal(p.legs, 6);
+      assert.ok(p.deterministic);
+      assert.equal(p.state_hash, doc.points[0].state_hash, `${p.mode} on ${p.threads} threads`);
+    }
+  }
+  const both = run(native, ['bench', '--creature', 'public/creatures/insect.json', '--legs', '2']);
+  assert.equal(both.status, 2);
+  assert.match(both.stderr, /--creature and --legs: give one of them/);
+});
+
 test('`bench --csv` prints the machine, a header and a row per point, like the JS writer', () => {
   const r = run(native, ['bench', '--legs', '2', '--characters', '2', '--threads', '2', '--mode', 'serial,full', '--steps', '3', '--runs', '1', '--csv']);
   assert.equal(r.status, 0, r.stderr);

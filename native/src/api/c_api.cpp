@@ -473,6 +473,7 @@ int gl_sim_character_info(void* s, double* out, int capacity) {
     o[GL_INFO_GOAL_SPEED] = S.controller(i).goal().speed;
     o[GL_INFO_GOAL_TURN] = S.controller(i).goal().turnRate;
     o[GL_INFO_PHASE] = S.controller(i).player().phase();
+    o[GL_INFO_LEGS] = static_cast<double>(S.character(i).morphology().legs.size());
   }
   return n;
 }

@@ -317,6 +317,7 @@ enum {
   GL_INFO_FALLEN_SECONDS, // how long it has been down
   GL_INFO_GOAL_SPEED, GL_INFO_GOAL_TURN,
   GL_INFO_PHASE,          // gait phase in [0, 1)
+  GL_INFO_LEGS,           // its number of legs: 2, 4, or a creature's (gl_sim_spawn_creature)
   GL_INFO_FIELDS
 };
 // Writes GL_INFO_FIELDS doubles per character for at most `capacity` characters into `out`;

@@ -2,6 +2,7 @@
 
 #include "api/c_api.h"
 #include "api/options.h"
+#include "body/creature.h"
 #include "sim/thread_budget.h"
 
 #include <algorithm>
@@ -32,6 +33,8 @@ const char* kBenchUsage =
     "whole step). Lists are comma separated; a range is A-B or A-B:STEP.\n"
     "\n"
     "  --legs 2|4|mixed[,...]        bipeds, quadrupeds, or both alternating (default 2)\n"
+    "  --creature FILE               instead of --legs: a crowd of this creature file's body\n"
+    "                                (public/creatures/*.json), walking at 0.4 m/s\n"
     "  --characters LIST             crowd sizes, e.g. 1-100:10 or 1,50,100 (default 1-100:11)\n"
     "  --threads LIST                thread counts, e.g. 1,2,3,4, up to 16 (default 1 and every\n"
     "                                core of the device, e.g. 1,8; in WebAssembly at most the\n"
@@ -237,6 +240,7 @@ json benchJsonPoint(const sim::PointResult& r) {
       {"state_hash", r.stateHash},
       {"deterministic", r.deterministic},
   };
+  if (s.creature) p["creature"] = s.creature->name;
   if (s.frames) {
     p["frames"] = {{"controller_ms", frames(r.frameController)},
                    {"physics_ms", frames(r.framePhysics)},
@@ -252,7 +256,7 @@ int runBenchCli(int argc, char** argv) {
   bool asJson = false, asCsv = false;
   std::string error;
   Options o(argc, argv, 2,
-            {"--legs", "--characters", "--threads", "--mode", "--steps", "--runs", "--shards",
+            {"--legs", "--creature", "--characters", "--threads", "--mode", "--steps", "--runs", "--shards",
              "--spacing", "--seed"},
             {"--json", "--csv", "--frames"});
   if (o.help) {
@@ -283,7 +287,15 @@ int runBenchCli(int argc, char** argv) {
   base.seed = static_cast<uint32_t>(seed);
   if (asJson && asCsv) return benchError("--json and --csv are exclusive");
   // Leg counts and modes are words; the rest numbers.
-  for (size_t start = 0; start <= legsText.size();) {
+  // A creature's crowd (body/creature.h): its leg count stands for --legs.
+  body::Morphology creature;
+  const bool ofCreature = o.values.count("--creature") > 0;
+  if (ofCreature) {
+    if (o.values.count("--legs")) return benchError("--creature and --legs: give one of them");
+    const std::string file = o.values["--creature"];
+    if (const auto e = body::loadCreatureFile(file, &creature)) return benchError("--creature: " + file + ": " + e->describe());
+  }
+  for (size_t start = 0; start <= legsText.size() && !ofCreature;) {
     size_t c = legsText.find(',', start);
     if (c == std::string::npos) c = legsText.size();
     const std::string item = legsText.substr(start, c - start);
@@ -302,8 +314,17 @@ int runBenchCli(int argc, char** argv) {
     if (!sim::parseMode(item, &m)) return benchError("--mode: '" + item + "' is not serial, controller or full");
     modes.push_back(m);
   }
+  if (ofCreature) legs = {static_cast<int>(creature.legs.size())};
   if (!parseList(charactersText, 1, 2000, &characters, &error)) return benchError("--characters: " + error);
+  if (ofCreature) {
+    // As many as the render buffer holds of its bodies; in the WASM build a crowd the heap cannot
+    // hold is refused when it is built (the point's error).
+    const int most = sim::Simulation::kRenderCapacity / static_cast<int>(creature.segments.size());
+    if (*std::max_element(characters.begin(), characters.end()) > most)
+      return benchError("--characters: more than a simulation holds of " + creature.name + " (" + std::to_string(most) + ")");
+  }
   for (int l : legs) {
+    if (ofCreature) break;
     // One simulation's render buffer bounds its bodies (Simulation::kRenderCapacity), and in
     // the WASM build its fixed heap (gl_bench_max_characters, as gl_sim_room counts).
     const int most = gl_bench_max_characters(l), largest = *std::max_element(characters.begin(), characters.end());
@@ -327,6 +348,7 @@ int runBenchCli(int argc, char** argv) {
         for (int n : characters) {
           sim::PointSpec s = base;
           s.legs = l;
+          if (ofCreature) s.creature = &creature;
           s.mode = m;
           s.threads = m == sim::Mode::Serial ? 1 : t;
           s.characters = n;
@@ -345,6 +367,7 @@ int runBenchCli(int argc, char** argv) {
                    {"modes", modesJson},       {"steps", base.steps},      {"runs", base.runs},
                    {"shards", base.shards},    {"spacing_m", base.spacing}, {"seed", base.seed},
                    {"step_hz", 120},           {"frames", base.frames}};
+  if (ofCreature) doc["inputs"]["creature"] = creature.name;
   doc["points"] = json::array();
 
   if (asCsv) {

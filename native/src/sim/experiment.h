@@ -28,6 +28,9 @@ enum Legs { kMixed = 0, kBiped = 2, kQuadruped = 4 };
 
 struct PointSpec {
   int legs = kBiped;
+  // A crowd of one creature file's body instead (body/creature.h, `gaitlab bench --creature`);
+  // `legs` is then its leg count. It must outlive the point.
+  const body::Morphology* creature = nullptr;
   int characters = 1;
   int threads = 1;
   Mode mode = Mode::Serial;

@@ -146,6 +146,25 @@ void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
   publish();
 }
 
+void Simulation::creatureScene(const body::Morphology& morphology, int characters, double spacing) {
+  creatures_.push_back(morphology);  // one body for the whole crowd
+  const body::Morphology& m = creatures_.back();
+  const Character kind = gait::characterOf(m);
+  const bool derived = m.legFrames.size() > 2;
+  const gait::Gait gait = gait::Gait::single(gait::derivedGait(m));
+  for (int i = 0; i < characters; ++i) {
+    const Place p = benchmarkPlace(i, characters, spacing);
+    int shard = 0;
+    while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
+    if (creatureRoom(m) < 1 || spawnBody(m, kind, p.x, p.z, p.heading, shard) < 0) break;
+    gait::Controller& c = agents_.back()->controller;
+    if (derived) c.setGait(gait);
+    c.setGoal({cruiseSpeed(Character::Quadruped), 0.0});
+    c.setPhase(std::fmod(i * 0.6180339887498949, 1.0));
+  }
+  publish();
+}
+
 // ---- Capacity -----------------------------------------------------------------------------------
 
 namespace {

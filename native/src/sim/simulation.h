@@ -86,6 +86,9 @@ class Simulation {
   // frac(i / golden ratio), as a crowd would be, rather than 100 characters whose feet all strike
   // on the same step (docs/parallel.md, the p99).
   void crowdScene(Crowd crowd, int characters, double spacing);
+  // The same crowd of one creature file's body (body/creature.h, `gaitlab bench --creature`),
+  // walking at the quadruped's cruise speed with the gait spawnCreature gives it.
+  void creatureScene(const body::Morphology& morphology, int characters, double spacing);
   // The speed each type's preset is tuned and benchmarked for (bench/walking.mjs; also the demo's
   // start goals): a 0.49 m dog walks slower than a 1.8 m human.
   static double cruiseSpeed(Character kind) { return kind == Character::Biped ? 1.0 : 0.4; }

@@ -212,6 +212,10 @@ TEST(Creature, ACreatureOfThreeLegFramesTakesNoGaitFile) {
   EXPECT_EQ(gl_sim_patch_params(s, -1, GL_KIND_QUADRUPED, "{\"period\": 0.31}"), GL_OK);  // the dog only
   EXPECT_NE(std::string(gl_sim_get_params(s, dog)), before);
   EXPECT_EQ(gl_sim_step(s, 240), GL_OK);
+  double info[2 * GL_INFO_FIELDS];
+  ASSERT_EQ(gl_sim_character_info(s, info, 2), 2);
+  EXPECT_EQ(info[GL_INFO_LEGS], 6.0);
+  EXPECT_EQ(info[GL_INFO_FIELDS + GL_INFO_LEGS], 4.0);
   gl_sim_destroy(s);
 }
 

@@ -133,7 +133,8 @@ export const INFO = {
   goalSpeed: 9,
   goalTurn: 10,
   phase: 11,
-  fields: 12,
+  legs: 12,
+  fields: 13,
 } as const;
 
 /** Terrain kinds of gl_sim_set_terrain (GL_TERRAIN_*), and the fields of gl_sim_terrain_grid (GL_GRID_*). */

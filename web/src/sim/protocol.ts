@@ -115,6 +115,11 @@ export interface CharacterStatus {
   goal: { speed: number; turn: number };
   /** Gait phase in [0, 1). */
   phase: number;
+  /**
+   * Its number of legs: 2 or 4, or a creature's (its `type` is then the character whose leg
+   * frames it has, and one of more than four legs takes no gait file).
+   */
+  legs: number;
   /** Wandering chooses its turn rate (else it keeps the goal it was given). */
   wanders?: boolean;
 }
@@ -236,6 +241,14 @@ export { MAX_THREADS } from './gaitlab-wasm';
 export function defaultThreads(hardwareConcurrency: number | undefined): number {
   const cores = Number.isFinite(hardwareConcurrency) ? Math.floor(hardwareConcurrency as number) : 1;
   return Math.max(1, Math.min(cores, MAX_THREADS));
+}
+
+/**
+ * Whether a character walks with a gait file (its gait can be read, edited and shared): the
+ * biped's and the quadruped's legs; a creature of more walks the gait derived from its body.
+ */
+export function takesGaitFiles(c: CharacterStatus): boolean {
+  return c.legs <= 4;
 }
 
 /** Most characters the page's `?characters=` may ask for at the start. */

@@ -32,6 +32,7 @@ import { CHARACTER_TYPES, typeOfKind } from '../gait/character';
 import {
   errorMessage,
   MAX_CHARACTERS,
+  takesGaitFiles,
   type CharacterStatus,
   type CharacterType,
   type SceneCommand,
@@ -437,7 +438,7 @@ class WorkerScene {
         if (!error && command.id === 'all') {
           // Characters added later walk with the type's gait as edited: the first of the type's,
           // as the editors show it.
-          const first = this.characterStatus().find((c) => c.type === command.character);
+          const first = this.characterStatus().find((c) => c.type === command.character && takesGaitFiles(c));
           if (first) this.typeGaits[command.character] = sim.getParams(first.id);
         }
         if (command.request !== undefined) post({ type: 'patched', request: command.request, accepted: error ? null : command.patch, error });
@@ -517,6 +518,7 @@ class WorkerScene {
         fallenSeconds: info[o + INFO.fallenSeconds],
         goal: { speed: info[o + INFO.goalSpeed], turn: info[o + INFO.goalTurn] },
         phase: info[o + INFO.phase],
+        legs: info[o + INFO.legs],
         wanders: this.wanderers.has(info[o + INFO.id]),
       });
     }

@@ -16,7 +16,10 @@ const repoDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../.
 const wasmDir = path.join(repoDir, 'build', 'wasm');
 const KIND = { biped: 0, quadruped: 1, box: 2 };
 const ERR = { argument: -1, full: -5 };
-const INFO_FIELDS = 12; // GL_INFO_FIELDS
+// GL_INFO_FIELDS, counted from the header's enum (a field added there grows every record).
+const header = fs.readFileSync(path.join(repoDir, 'native/src/api/c_api.h'), 'utf8');
+const INFO_FIELDS = /enum \{\s*(GL_INFO_ID[\s\S]*?)GL_INFO_FIELDS/.exec(header)[1]
+  .replace(/\/\/.*$/gm, '').split(',').map((name) => name.trim()).filter((name) => name !== '').length;
 
 // The costs sim/capacity.h charges, read from the header so the test follows it.
 const capacity = fs.readFileSync(path.join(repoDir, 'native/src/sim/capacity.h'), 'utf8');

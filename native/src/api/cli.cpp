@@ -27,7 +27,6 @@
 #include "api/options.h"
 #include "body/creature.h"
 #include "gait/defaults.h"
-#include "gait/derived_gait.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
@@ -261,15 +260,11 @@ int walk(int argc, char** argv) {
   }
   gait::GaitFile file;
   gait::Gait gait;
-  const bool derived = w.body && w.body->legFrames.size() > 2;
-  if (derived) {
-    // Gait files describe a biped's or a quadruped's legs; other bodies walk a derived gait.
-    if (o.values.count("--params") || o.values.count("--gait-schedule"))
-      return api::usageError("walk", "--params, --gait-schedule: gait files are for bodies of one or two leg frames; "
-                                     "this one walks the gait derived from it");
-    gait = gait::Gait::single(gait::derivedGait(*w.body));
-    w.gait = &gait;
-  }
+  // Gait files describe a biped's or a quadruped's legs; other bodies walk the gait derived from
+  // them, which the simulation gives them as they are spawned.
+  if (w.body && w.body->legFrames.size() > 2 && (o.values.count("--params") || o.values.count("--gait-schedule")))
+    return api::usageError("walk", "--params, --gait-schedule: gait files are for bodies of one or two leg frames; "
+                                   "this one walks the gait derived from it");
   if (o.values.count("--params")) {
     if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
     chosen = file.character;

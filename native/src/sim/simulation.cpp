@@ -77,11 +77,7 @@ int Simulation::spawnCreature(const body::Morphology& morphology, double x, doub
   creatures_.push_back(morphology);
   const body::Morphology& m = creatures_.back();
   const int id = spawnBody(m, gait::characterOf(m), x, z, heading, shards_.leastPopulated());
-  if (id < 0) {
-    creatures_.pop_back();
-    return -1;
-  }
-  if (m.legFrames.size() > 2) agents_.back()->controller.setGait(gait::Gait::single(gait::derivedGait(m)));
+  if (id < 0) creatures_.pop_back();
   return id;
 }
 
@@ -97,6 +93,8 @@ int Simulation::spawnBody(const body::Morphology& m, Character kind, double x, d
   a.kind = kind;
   shards_.addAgent(&a);
   world.reserve();  // scene building, not the next step, sizes the solver for the new figure
+  // A body of more than two leg frames has no preset: it walks the gait derived from it.
+  if (m.legFrames.size() > 2) a.controller.setGait(gait::Gait::single(gait::derivedGait(m)));
   render_.addCharacter(*a.body, id);
   return id;
 }
@@ -150,15 +148,12 @@ void Simulation::creatureScene(const body::Morphology& morphology, int character
   creatures_.push_back(morphology);  // one body for the whole crowd
   const body::Morphology& m = creatures_.back();
   const Character kind = gait::characterOf(m);
-  const bool derived = m.legFrames.size() > 2;
-  const gait::Gait gait = gait::Gait::single(gait::derivedGait(m));
   for (int i = 0; i < characters; ++i) {
     const Place p = benchmarkPlace(i, characters, spacing);
     int shard = 0;
     while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
     if (creatureRoom(m) < 1 || spawnBody(m, kind, p.x, p.z, p.heading, shard) < 0) break;
     gait::Controller& c = agents_.back()->controller;
-    if (derived) c.setGait(gait);
     c.setGoal({cruiseSpeed(Character::Quadruped), 0.0});
     c.setPhase(std::fmod(i * 0.6180339887498949, 1.0));
   }

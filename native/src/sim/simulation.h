@@ -225,7 +225,8 @@ class Simulation {
  private:
   int spawnCharacter(Character kind, double x, double z, double heading, int shard);
   // A character of body `m` (which must outlive it) and `kind` in `shard`: spawnCharacter's and
-  // spawnCreature's common part. -1 if no id is free.
+  // spawnCreature's common part; a body of more than two leg frames gets the gait derived from it
+  // (gait/derived_gait.h), the others their kind's preset. -1 if no id is free.
   int spawnBody(const body::Morphology& m, Character kind, double x, double z, double heading, int shard);
   int roomFor(const body::Morphology& m, int64_t bytes) const;
   void publish() { render_.publish(stepIndex(), time()); }

@@ -87,12 +87,15 @@ using gaitlab::sim::takeWorkers;
 static_assert(GL_MAX_THREADS == gaitlab::sim::kMaxThreads, "one most-threads figure");
 
 // The message of a spawn refused for want of room: what is full.
-std::string noRoom(void* s, int kind) { return "no room: " + handle(s)->simulation.fullReason(kind); }
+std::string noRoom(void* s, int kind) {
+  return "no room: " + handle(s)->simulation.fullReason(gaitlab::gait::characterFromKind(kind));
+}
 
-// Character types are numbered once (gait::Character, which the simulation uses too); the ABI's
-// numbers say the same, and a box, a prop rather than a character, takes the next number.
-static_assert(GL_KIND_BIPED == static_cast<int>(Character::Biped) &&
-              GL_KIND_QUADRUPED == static_cast<int>(Character::Quadruped) && GL_KIND_BOX == GL_KIND_QUADRUPED + 1);
+// Character types are numbered once (gait::kindNumber); the ABI's numbers say the same.
+static_assert(GL_KIND_BIPED == gaitlab::gait::kindNumber(Character::Biped) &&
+              GL_KIND_QUADRUPED == gaitlab::gait::kindNumber(Character::Quadruped) &&
+              GL_KIND_HEXAPOD == gaitlab::gait::kindNumber(Character::Hexapod) &&
+              GL_KIND_OCTOPOD == gaitlab::gait::kindNumber(Character::Octopod));
 
 bool characterKind(int kind, gaitlab::gait::Character* c) {
   const auto character = gaitlab::gait::characterFromKind(kind);
@@ -100,8 +103,9 @@ bool characterKind(int kind, gaitlab::gait::Character* c) {
   return character.has_value();
 }
 std::string notACharacter(int kind) {
-  return "kind: " + str(kind) + " is not GL_KIND_BIPED or GL_KIND_QUADRUPED";
+  return "kind: " + str(kind) + " is not a character's (GL_KIND_BIPED, GL_KIND_QUADRUPED, GL_KIND_HEXAPOD or GL_KIND_OCTOPOD)";
 }
+std::string notAThing(int kind) { return "kind: " + str(kind) + " is neither a character's nor GL_KIND_BOX"; }
 std::string noCharacter(int id) { return "id: no character has id " + str(id); }
 // A thrown box's half size (api/limits.h), or the refusal's message.
 std::string outOfHalf(double half) {
@@ -130,20 +134,8 @@ int benchMaxCharacters(int legs) {
   return static_cast<int>(std::min<int64_t>(render, heap));
 }
 
-// Gait files name the legs of a biped or a quadruped (gait/schema.h): a creature of more leg
-// frames (gl_sim_spawn_creature) walks the gait derived from its body and takes none.
-bool takesGaitFiles(const Simulation& simulation, int i) {
-  return simulation.character(i).morphology().legFrames.size() <= 2;
-}
-std::string takesNoGaitFile(const Simulation& simulation, int i, int characterId) {
-  return "id: character " + str(characterId) + " has a body of " +
-         str(static_cast<int>(simulation.character(i).morphology().legFrames.size())) +
-         " leg frames, which walks the gait derived from it and takes no gait file";
-}
-
 // The characters a parameter call addresses: the one with id `characterId`, or with -1 every
-// character of `kind` (whose gait::Character goes to `out`; creatures that take no gait file left
-// out). Returns GL_OK or the refusal.
+// character of `kind` (whose gait::Character goes to `out`). Returns GL_OK or the refusal.
 int targetsOf(const Simulation& simulation, int characterId, int kind, gaitlab::gait::Character* out,
               std::vector<int>* targets) {
   using namespace gaitlab::gait;
@@ -151,14 +143,13 @@ int targetsOf(const Simulation& simulation, int characterId, int kind, gaitlab::
   const Character c = *out;
   if (characterId < 0) {
     for (int i = 0; i < simulation.characterCount(); ++i) {
-      if (characterOf(simulation.character(i).morphology()) == c && takesGaitFiles(simulation, i)) targets->push_back(i);
+      if (characterOf(simulation.character(i).morphology()) == c) targets->push_back(i);
     }
     if (targets->empty()) return refuse(GL_ERR_NO_CHARACTER, std::string("id: -1, and no ") + characterName(c) + " is in the simulation");
     return GL_OK;
   }
   const int i = simulation.characterIndex(characterId);
   if (i < 0) return refuse(GL_ERR_NO_CHARACTER, noCharacter(characterId));
-  if (!takesGaitFiles(simulation, i)) return refuse(GL_ERR_KIND, takesNoGaitFile(simulation, i, characterId));
   if (characterOf(simulation.character(i).morphology()) != c)
     return refuse(GL_ERR_KIND, "kind: character " + str(characterId) + " is not a " + characterName(c));
   targets->push_back(i);
@@ -200,22 +191,23 @@ void gl_sim_destroy(void* s) {
 }
 
 int gl_sim_room(void* s, int kind) {
-  if (kind == GL_KIND_BIPED || kind == GL_KIND_QUADRUPED) return sim(s)->characterRoom(static_cast<Character>(kind));
+  Character c;
+  if (characterKind(kind, &c)) return sim(s)->characterRoom(c);
   if (kind == GL_KIND_BOX) return sim(s)->boxRoom();
-  return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_KIND_BIPED, GL_KIND_QUADRUPED or GL_KIND_BOX");
+  return refuse(GL_ERR_ARGUMENT, notAThing(kind));
 }
 
 int gl_sim_spawn(void* s, int kind, double x, double z, double heading) {
-  if (kind < GL_KIND_BIPED || kind > GL_KIND_BOX)
-    return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_KIND_BIPED, GL_KIND_QUADRUPED or GL_KIND_BOX");
+  Character c;
+  const bool character = characterKind(kind, &c);
+  if (!character && kind != GL_KIND_BOX) return refuse(GL_ERR_ARGUMENT, notAThing(kind));
   using namespace gaitlab::limits;
   for (const std::string& e : {outOfRange("x", x, kMaxCoordinate), outOfRange("z", z, kMaxCoordinate),
                                outOfRange("heading", heading, kMaxHeading)}) {
     if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
   }
   if (gl_sim_room(s, kind) < 1) return refuse(GL_ERR_FULL, noRoom(s, kind));
-  const int id = kind == GL_KIND_BOX ? sim(s)->spawnBox(x, z, heading)
-                                     : sim(s)->spawn(static_cast<Character>(kind), x, z, heading);
+  const int id = character ? sim(s)->spawn(c, x, z, heading) : sim(s)->spawnBox(x, z, heading);
   if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, kind));
   return id;
 }
@@ -227,8 +219,9 @@ double gl_top_speed(int kind) {
 }
 
 double gl_cruise_speed(int kind) {
-  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(kNaN, notACharacter(kind));
-  return Simulation::cruiseSpeed(static_cast<Character>(kind));
+  Character c;
+  if (!characterKind(kind, &c)) return refuse(kNaN, notACharacter(kind));
+  return Simulation::cruiseSpeed(c);
 }
 
 int gl_sim_add_characters(void* s, int kind, int count) {
@@ -236,12 +229,15 @@ int gl_sim_add_characters(void* s, int kind, int count) {
   if (kind == GL_LAYOUT_ALTERNATING) return sim(s)->addCharacters(gaitlab::sim::Crowd::Mixed, count);
   if (kind == GL_KIND_BIPED) return sim(s)->addCharacters(gaitlab::sim::Crowd::Bipeds, count);
   if (kind == GL_KIND_QUADRUPED) return sim(s)->addCharacters(gaitlab::sim::Crowd::Quadrupeds, count);
-  return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is not GL_KIND_BIPED, GL_KIND_QUADRUPED or GL_LAYOUT_ALTERNATING");
+  if (kind == GL_KIND_HEXAPOD) return sim(s)->addCharacters(gaitlab::sim::Crowd::Hexapods, count);
+  if (kind == GL_KIND_OCTOPOD) return sim(s)->addCharacters(gaitlab::sim::Crowd::Octopods, count);
+  return refuse(GL_ERR_ARGUMENT, "kind: " + str(kind) + " is neither a character's nor GL_LAYOUT_ALTERNATING");
 }
 
 int gl_sim_add_apart(void* s, int kind) {
-  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED) return refuse(GL_ERR_ARGUMENT, notACharacter(kind));
-  const int id = sim(s)->addApart(static_cast<Character>(kind));
+  Character c;
+  if (!characterKind(kind, &c)) return refuse(GL_ERR_ARGUMENT, notACharacter(kind));
+  const int id = sim(s)->addApart(c);
   if (id < 0) return refuse(GL_ERR_FULL, noRoom(s, kind));
   return id;
 }
@@ -348,7 +344,6 @@ const char* gl_sim_get_params(void* s, int characterId) {
   const Simulation& simulation = *sim(s);
   const int i = simulation.characterIndex(characterId);
   if (i < 0) return refuse<const char*>(nullptr, noCharacter(characterId));
-  if (!takesGaitFiles(simulation, i)) return refuse<const char*>(nullptr, takesNoGaitFile(simulation, i, characterId));
   handle(s)->text = gaitFileJson(characterOf(simulation.character(i).morphology()), simulation.controller(i).gait());
   return handle(s)->text.c_str();
 }
@@ -462,7 +457,7 @@ int gl_sim_character_info(void* s, double* out, int capacity) {
     const auto root = c.segmentState(c.morphology().legFrames[0]);
     double* o = out + i * GL_INFO_FIELDS;
     o[GL_INFO_ID] = S.idOf(i);
-    o[GL_INFO_KIND] = static_cast<int>(S.kindOf(i));
+    o[GL_INFO_KIND] = gaitlab::gait::kindNumber(S.kindOf(i));
     o[GL_INFO_X] = root.position.x();
     o[GL_INFO_Y] = root.position.y();
     o[GL_INFO_Z] = root.position.z();
@@ -671,12 +666,14 @@ const char* gl_morphology_json(int kind) {
   static const std::string quadruped = gaitlab::peers::morphologyJson(Character::Quadruped);
   if (kind == GL_KIND_BIPED) return biped.c_str();
   if (kind == GL_KIND_QUADRUPED) return quadruped.c_str();
-  return refuse<const char*>(nullptr, notACharacter(kind));
+  return refuse<const char*>(nullptr, "kind: " + str(kind) + " is not GL_KIND_BIPED or GL_KIND_QUADRUPED");
 }
 
 void* gl_peer_scene_create(int kind, int characters, int threads) {
-  Character c;
-  if (!characterKind(kind, &c)) return refuse<void*>(nullptr, notACharacter(kind));
+  // The peer benchmark times the biped's and the quadruped's ragdolls only.
+  if (kind != GL_KIND_BIPED && kind != GL_KIND_QUADRUPED)
+    return refuse<void*>(nullptr, "kind: " + str(kind) + " is not GL_KIND_BIPED or GL_KIND_QUADRUPED");
+  const Character c = *gaitlab::gait::characterFromKind(kind);
   if (characters < 1 || characters > gaitlab::peers::kMaxCharacters)
     return refuse<void*>(nullptr, "characters: " + str(characters) + " is outside [1, " +
                                       str(gaitlab::peers::kMaxCharacters) + "]");

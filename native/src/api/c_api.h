@@ -103,8 +103,10 @@ GL_EXPORT void* gl_sim_create(int threads, uint32_t seed);
 GL_EXPORT void gl_sim_destroy(void* sim);  // NULL is allowed
 
 // Kinds of thing that can be spawned. Characters are articulated figures built from a
-// morphology (native/src/body); a prop is a loose box.
-enum { GL_KIND_BIPED = 0, GL_KIND_QUADRUPED = 1, GL_KIND_BOX = 2 };
+// morphology (native/src/body): the biped, the quadruped, and the six- and eight-legged kinds
+// (their shipped bodies the insect and the spider, public/creatures/), which walk a gait derived
+// from the body (gait/derived_gait.h); a prop is a loose box. (3 is GL_LAYOUT_ALTERNATING.)
+enum { GL_KIND_BIPED = 0, GL_KIND_QUADRUPED = 1, GL_KIND_BOX = 2, GL_KIND_HEXAPOD = 4, GL_KIND_OCTOPOD = 5 };
 
 // Spawns one thing standing on the ground at (x, z), facing `heading` radians (about +y,
 // 0 = +z). Returns its id (>= 0); GL_ERR_ARGUMENT for an unknown kind or a position or heading
@@ -130,15 +132,15 @@ GL_EXPORT double gl_top_speed(int kind);
 
 // The demo page's scene layout (native/src/sim/scene_layout.h): a grid facing +z, 2.5 m across
 // and 3 m deep, centred on the origin. The first call sizes the grid for its `count`; later calls
-// continue in the next free places, in rows behind the first (−z). `kind` is GL_KIND_BIPED,
-// GL_KIND_QUADRUPED, or GL_LAYOUT_ALTERNATING (biped and quadruped in turn, a biped first); each
+// continue in the next free places, in rows behind the first (−z). `kind` is a character's kind
+// or GL_LAYOUT_ALTERNATING (biped and quadruped in turn, a biped first); each
 // character starts walking forward at its kind's cruise speed (gl_cruise_speed). Returns how many
 // were added (fewer than `count` once the render buffer is full; they are the last characters of
 // gl_sim_character_info); GL_ERR_ARGUMENT if the kind is not one of those or `count` is negative.
 enum { GL_LAYOUT_ALTERNATING = 3 };
 GL_EXPORT int gl_sim_add_characters(void* sim, int kind, int count);
 
-// Adds one character of `kind` (GL_KIND_BIPED or GL_KIND_QUADRUPED) at the layout's place apart,
+// Adds one character of `kind` (a character's GL_KIND_*) at the layout's place apart,
 // 5 m left (−x) of the grid level with its middle row, where it can be watched alone (the
 // optimize panel's learner). No goal is set. Returns its id, or an error as gl_sim_spawn.
 GL_EXPORT int gl_sim_add_apart(void* sim, int kind);
@@ -146,7 +148,8 @@ GL_EXPORT int gl_sim_add_apart(void* sim, int kind);
 // Spawns a character whose body is the creature file `creatureJson` (body/creature.h,
 // public/creatures/*.json) standing at (x, z), facing `heading`: a body of one or two leg frames
 // walks the biped's or the quadruped's preset, one of three or four the gait derived from it
-// (gait/derived_gait.h). No goal is set. Returns its id; GL_ERR_ARGUMENT for a refused file (the
+// (gait/derived_gait.h). It is a character of the kind its leg frames make (1 biped,
+// 2 quadruped, 3 hexapod, 4 octopod) and takes that kind's gait files. No goal is set. Returns its id; GL_ERR_ARGUMENT for a refused file (the
 // message names the field, "creature: legFrames[1].mass: ...") or a position or heading as
 // gl_sim_spawn refuses them, GL_ERR_FULL when there is no room for its bodies.
 GL_EXPORT int gl_sim_spawn_creature(void* sim, const char* creatureJson, double x, double z, double heading);
@@ -202,9 +205,8 @@ GL_EXPORT const char* gl_preset_json(int kind);
 // Validates a gait file for `kind` and gives it to the character with id `characterId` (as
 // returned by gl_sim_spawn), or with characterId = -1 to every character of that kind. Nothing
 // changes unless the whole file is valid. GL_OK; GL_ERR_KIND, GL_ERR_NO_CHARACTER, or
-// GL_ERR_INVALID_PARAMS ("FIELD: WHAT" for a refused file). A creature of more than two leg frames
-// (gl_sim_spawn_creature) takes no gait file: it is not among "every character of that kind", and
-// named by its id it is refused with GL_ERR_KIND (so too in gl_sim_patch_params).
+// GL_ERR_INVALID_PARAMS ("FIELD: WHAT" for a refused file). A creature (gl_sim_spawn_creature) is
+// a character of the kind its leg frames make.
 GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char* json);
 
 // An edit: `patch` is a JSON object {"<name>": number | [4 numbers], ...} of some parameters and
@@ -216,9 +218,8 @@ GL_EXPORT int gl_sim_set_params(void* sim, int characterId, int kind, const char
 // code (GL_ERR_INVALID_PARAMS with gl_last_error() "NAME: WHAT" for a refused value).
 GL_EXPORT int gl_sim_patch_params(void* sim, int characterId, int kind, const char* patch);
 
-// The gait parameters a character is using, as a gait file. The simulation's string; NULL if no
-// character has that id, or it is a creature of more than two leg frames (it walks the gait
-// derived from its body, which no gait file describes).
+// The gait parameters a character is using, as a gait file of its kind. The simulation's string;
+// NULL if no character has that id.
 GL_EXPORT const char* gl_sim_get_params(void* sim, int characterId);
 
 // ---- Interaction: the demo page's commands --------------------------------------------------
@@ -371,7 +372,7 @@ enum { GL_METHOD_GREEDY = 0, GL_METHOD_CMAES = 1 };
 
 // The search's own settings; the objective's are a JSON object (gl_opt_create).
 typedef struct gl_opt_settings {
-  int32_t kind;        // GL_KIND_BIPED (default) or GL_KIND_QUADRUPED
+  int32_t kind;        // a character's GL_KIND_* (default GL_KIND_BIPED)
   int32_t method;      // GL_METHOD_GREEDY (default, thesis §3.3) or GL_METHOD_CMAES
   int32_t candidates;  // evaluations per generation, [2, 1000]; default 10
   int32_t threads;     // evaluations in parallel (clamped); default 1

@@ -27,6 +27,7 @@
 #include "api/options.h"
 #include "body/creature.h"
 #include "gait/defaults.h"
+#include "gait/derived_gait.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
 #include "optimize/optimizer.h"
@@ -69,13 +70,15 @@ const char* kWalkUsage =
     "\n"
     "One character walks; prints what it achieved (speed, drift, duty factors...).\n"
     "\n"
-    "  --character biped|quadruped   (default biped, or the --params file's character)\n"
+    "  --character KIND              biped, quadruped, hexapod or octopod (default biped, or the\n"
+    "                                --params file's or the --creature file's)\n"
     "  --params FILE                 gait file (public/presets/*.json format); default: preset\n"
+    "                                (hexapod, octopod: the gait derived from the body)\n"
     "  --creature FILE               the character's body from a creature file\n"
-    "                                (public/creatures/*.json format); default: the shipped\n"
-    "                                body. Its leg frames choose the character: one a biped,\n"
-    "                                two a quadruped; three or four walk a gait derived from\n"
-    "                                the body (gait files are refused for them)\n"
+    "                                (public/creatures/*.json format); default: the kind's\n"
+    "                                shipped body (the insect, the spider for 6 and 8 legs). Its\n"
+    "                                leg frames choose the kind: one a biped, two a quadruped,\n"
+    "                                three a hexapod, four an octopod\n"
     "  --speed M_S                   goal speed, m/s, -5 to 5 (default 1.0)\n"
     "  --turn RAD_S                  goal turn rate, rad/s, -3 to 3 (default 0)\n"
     "  --heading RAD                 heading it starts facing, about +y (default 0: +z)\n"
@@ -110,8 +113,12 @@ const char* kOptimizeUsage =
     "\n"
     "Searches gait parameters (thesis §3.3) and writes the best as a gait file.\n"
     "\n"
-    "  --character biped|quadruped   (default biped, or the --params file's character)\n"
-    "  --params FILE                 start from this gait file (default: the preset)\n"
+    "  --character KIND              biped, quadruped, hexapod or octopod (default biped, or the\n"
+    "                                --params file's or the --creature file's)\n"
+    "  --params FILE                 start from this gait file (default: the preset, or the gait\n"
+    "                                derived from the body for hexapods and octopods)\n"
+    "  --creature FILE               search for this body (a creature file), not the kind's\n"
+    "                                shipped one; its leg frames choose the kind\n"
     "  --key M_S                     of a gait with speed keys, tune the key at this speed\n"
     "                                (default: the file's \"params\"); episodes walk with every key\n"
     "  --hold NAME,...               parameters left as they start: schema names\n"
@@ -146,7 +153,8 @@ const char* kSchemaUsage =
     "\n"
     "Prints the gait parameter schema (names, groups, bounds, defaults, units).\n"
     "\n"
-    "  --character biped|quadruped   only this character (default both)\n"
+    "  --character KIND              only this kind: biped, quadruped, hexapod or octopod\n"
+    "                                (default all)\n"
     "  --json                        print one JSON document\n";
 
 const char* kUsage =
@@ -180,7 +188,7 @@ bool characterOption(Options& o, std::optional<gait::Character>* out) {
   const auto it = o.values.find("--character");
   if (it == o.values.end()) return true;
   *out = gait::characterFromName(it->second);
-  if (!*out) o.error = "--character: '" + it->second + "' is not biped or quadruped";
+  if (!*out) o.error = "--character: '" + it->second + "' is not biped, quadruped, hexapod or octopod";
   return out->has_value();
 }
 
@@ -194,10 +202,10 @@ int loadParamsOption(const std::string& path, std::optional<gait::Character> exp
   return 0;
 }
 
-// Loads a --creature file (body/creature.h); its leg frames choose the character, which must be
-// the one --character named, if it did: one leg frame a biped, two a quadruped, and more walk
-// with a gait derived from the body (gait/derived_gait.h) under the quadruped's controller. A
-// refused file is reported as "gaitlab: FILE: FIELD: WHAT" (exit status 2).
+// Loads a --creature file (body/creature.h); its leg frames choose the kind of character, which
+// must be the one --character named, if it did: one leg frame a biped, two a quadruped, three a
+// hexapod, four an octopod. A refused file is reported as "gaitlab: FILE: FIELD: WHAT" (exit
+// status 2).
 int loadCreatureOption(const std::string& path, std::optional<gait::Character>* chosen, body::Morphology* out) {
   const auto refuse = [&](const std::string& why) {
     std::fprintf(stderr, "gaitlab: %s: %s\n", path.c_str(), why.c_str());
@@ -206,8 +214,6 @@ int loadCreatureOption(const std::string& path, std::optional<gait::Character>* 
   if (const auto error = body::loadCreatureFile(path, out)) return refuse(error->describe());
   const size_t frames = out->legFrames.size();
   const gait::Character c = gait::characterOf(*out);
-  if (*chosen && frames > 2)
-    return refuse("a body of " + std::to_string(frames) + " leg frames is neither a biped nor a quadruped: leave out --character");
   if (*chosen && **chosen != c)
     return refuse("a body of " + std::to_string(frames) + " leg frame" + (frames == 1 ? "" : "s") + " walks as a " +
                   gait::characterName(c) + ", not as the " + gait::characterName(**chosen) + " --character names");
@@ -260,11 +266,6 @@ int walk(int argc, char** argv) {
   }
   gait::GaitFile file;
   gait::Gait gait;
-  // Gait files describe a biped's or a quadruped's legs; other bodies walk the gait derived from
-  // them, which the simulation gives them as they are spawned.
-  if (w.body && w.body->legFrames.size() > 2 && (o.values.count("--params") || o.values.count("--gait-schedule")))
-    return api::usageError("walk", "--params, --gait-schedule: gait files are for bodies of one or two leg frames; "
-                                   "this one walks the gait derived from it");
   if (o.values.count("--params")) {
     if (const int status = loadParamsOption(o.values["--params"], chosen, &file)) return status;
     chosen = file.character;
@@ -462,7 +463,7 @@ json termsJson(const optimize::ObjectiveTerms& t) {
 
 int optimizeCommand(int argc, char** argv) {
   Options o(argc, argv, 2,
-            {"--character", "--params", "--method", "--generations", "--candidates", "--seed",
+            {"--character", "--params", "--creature", "--method", "--generations", "--candidates", "--seed",
              "--threads", "--out", "--seconds", "--speeds", "--grounds", "--objective", "--key", "--hold",
              "--step-size", "--perturb-probability"},
             {"--json"});
@@ -484,6 +485,12 @@ int optimizeCommand(int argc, char** argv) {
   if (!o.values.count("--out")) return api::usageError("optimize", "--out FILE is required");
   const std::string outPath = o.values["--out"];
 
+  optimize::SearchOptions search;
+  if (o.values.count("--creature")) {
+    body::Morphology creature;
+    if (const int status = loadCreatureOption(o.values["--creature"], &chosen, &creature)) return status;
+    search.body = creature;
+  }
   gait::GaitFile start;
   std::string startName = "preset";
   if (o.values.count("--params")) {
@@ -491,9 +498,17 @@ int optimizeCommand(int argc, char** argv) {
     chosen = start.character;
     startName = o.values["--params"];
   }
-  optimize::SearchOptions search;
   search.character = chosen.value_or(gait::Character::Biped);
-  search.gait = o.values.count("--params") ? start.gait : gait::defaultGait(search.character);
+  if (o.values.count("--params")) {
+    search.gait = start.gait;
+  } else if (search.body && gait::derivesGait(search.character)) {
+    // What the body walks when it is spawned (sim::Simulation::spawnBody): its own derived gait.
+    search.gait = gait::Gait::single(gait::derivedGait(*search.body), gait::kDerivedFromSpeed);
+    startName = "derived";
+  } else {
+    search.gait = gait::defaultGait(search.character);
+    if (gait::derivesGait(search.character)) startName = "derived";
+  }
   search.key = search.gait.primary;
   if (o.values.count("--key")) {
     double speed = 0;
@@ -588,6 +603,7 @@ int optimizeCommand(int argc, char** argv) {
                {"objective_terms", termsJson(optimizer->bestTerms())},
                {"objective_settings", json::parse(optimize::settingsJson(search.objective), nullptr, false)},
                {"start", startName},
+               {"creature", o.values.count("--creature") ? json(o.values["--creature"]) : json(nullptr)},
                {"generations", optimizer->generation()},
                {"candidates", search.candidates},
                {"evaluations", optimizer->evaluations()},

@@ -16,20 +16,22 @@
 
 namespace gaitlab::body {
 
-namespace {
-
-// A shipped creature file, parsed once. They are embedded at build time and read by the tests,
-// so a refusal here is a broken build, not bad input.
-Morphology shipped(const char* name) {
+// They are embedded at build time and read by the tests, so a refusal here is a broken build, not
+// bad input.
+Morphology shippedCreature(const std::string& name) {
+  const char* text = shippedCreatureText(name);
+  if (!text) {
+    std::fprintf(stderr, "gaitlab: no shipped creature file %s.json\n", name.c_str());
+    std::abort();
+  }
   Morphology m;
-  if (auto error = parseCreatureFile(shippedCreatureText(name), &m)) {
-    std::fprintf(stderr, "gaitlab: the shipped creature file %s.json is refused: %s\n", name, error->describe().c_str());
+  if (auto error = parseCreatureFile(text, &m)) {
+    std::fprintf(stderr, "gaitlab: the shipped creature file %s.json is refused: %s\n", name.c_str(),
+                 error->describe().c_str());
     std::abort();
   }
   return m;
 }
-
-}  // namespace
 
 double Morphology::totalMass() const {
   double m = 0;
@@ -40,12 +42,12 @@ double Morphology::totalMass() const {
 double Morphology::standingHeight() const { return segments[legFrames[0]].center.y(); }
 
 Morphology makeBiped() {
-  static const Morphology m = shipped("biped");
+  static const Morphology m = shippedCreature("biped");
   return m;
 }
 
 Morphology makeQuadruped() {
-  static const Morphology m = shipped("quadruped");
+  static const Morphology m = shippedCreature("quadruped");
   return m;
 }
 

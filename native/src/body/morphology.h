@@ -84,5 +84,8 @@ struct Morphology {
 // The shipped characters, built from their creature files (public/creatures/, body/creature.h).
 Morphology makeBiped();
 Morphology makeQuadruped();
+// Any shipped creature file by name ("insect", "spider", "dragon", ...): built from the text
+// embedded at build time (body/creature.h, shippedCreatureText).
+Morphology shippedCreature(const std::string& name);
 
 }  // namespace gaitlab::body

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "gait/derived_gait.h"
 #include "gait/params_io.h"
 
 namespace gaitlab::gait {
@@ -14,7 +15,7 @@ namespace {
 // than walk with half-set parameters.
 Gait loadPreset(Character c) {
   GaitFile file;
-  if (const auto error = parseGaitFile(presetText(c), c, &file)) {
+  if (const auto error = parseGaitFile(embeddedPresetText(c), c, &file)) {
     std::fprintf(stderr, "gaitlab: embedded preset public/presets/%s.json: %s\n", characterName(c),
                  error->describe().c_str());
     std::abort();
@@ -22,12 +23,28 @@ Gait loadPreset(Character c) {
   return file.gait;
 }
 
+// A kind of more than two leg frames: the gait derived from its shipped body, as one key at the
+// speed it was taken from.
+Gait derivedDefault(Character c) { return Gait::single(derivedGait(shippedBody(c)), kDerivedFromSpeed); }
+
 }  // namespace
 
 const Gait& defaultGait(Character c) {
+  // Each its own static: the derived gaits read the quadruped's preset while they are made.
   static const Gait biped = loadPreset(Character::Biped);
   static const Gait quadruped = loadPreset(Character::Quadruped);
-  return c == Character::Biped ? biped : quadruped;
+  if (c == Character::Biped) return biped;
+  if (c == Character::Quadruped) return quadruped;
+  static const Gait hexapod = derivedDefault(Character::Hexapod);
+  static const Gait octopod = derivedDefault(Character::Octopod);
+  return c == Character::Hexapod ? hexapod : octopod;
+}
+
+const char* presetText(Character c) {
+  if (!derivesGait(c)) return embeddedPresetText(c);
+  static const std::string hexapod = gaitFileJson(Character::Hexapod, defaultGait(Character::Hexapod));
+  static const std::string octopod = gaitFileJson(Character::Octopod, defaultGait(Character::Octopod));
+  return (c == Character::Hexapod ? hexapod : octopod).c_str();
 }
 
 GaitParams defaultParams(Character c) { return defaultGait(c).primaryParams(); }

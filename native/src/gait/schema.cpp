@@ -1,8 +1,11 @@
 #include "gait/schema.h"
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <nlohmann/json.hpp>
 
+#include "body/creature.h"
 #include "gait/defaults.h"
 
 namespace gaitlab::gait {
@@ -225,35 +228,59 @@ Table build(Character c) {
 }
 
 const Table& table(Character c) {
-  static const Table biped = build(Character::Biped);
-  static const Table quadruped = build(Character::Quadruped);
-  return c == Character::Biped ? biped : quadruped;
+  static const Table tables[kCharacterCount] = {build(Character::Biped), build(Character::Quadruped),
+                                                build(Character::Hexapod), build(Character::Octopod)};
+  return tables[static_cast<int>(c)];
 }
 
 double* at(GaitParams& p, std::ptrdiff_t offset) {
   return reinterpret_cast<double*>(reinterpret_cast<char*>(&p) + offset);
 }
 
-// The morphology of a character, built once (leg frames and sides of the legs for the schema).
-const body::Morphology& morphologyOf(Character c) {
-  static const body::Morphology biped = body::makeBiped(), quadruped = body::makeQuadruped();
-  return c == Character::Biped ? biped : quadruped;
+// The shipped creature file each kind stands for (public/creatures/).
+const char* shippedBodyName(Character c) {
+  static const char* const names[kCharacterCount] = {"biped", "quadruped", "insect", "spider"};
+  return names[static_cast<int>(c)];
 }
 
 }  // namespace
 
+const body::Morphology& shippedBody(Character c) {
+  static const body::Morphology bodies[kCharacterCount] = {
+      body::shippedCreature(shippedBodyName(Character::Biped)),
+      body::shippedCreature(shippedBodyName(Character::Quadruped)),
+      body::shippedCreature(shippedBodyName(Character::Hexapod)),
+      body::shippedCreature(shippedBodyName(Character::Octopod))};
+  return bodies[static_cast<int>(c)];
+}
+
+bool derivesGait(Character c) { return legFrameNames(c).size() > 2; }
+
 const std::vector<std::string>& legFrameNames(Character c) {
-  static const std::vector<std::string> biped = {"legFrame"}, quadruped = {"front", "back"};
-  return c == Character::Biped ? biped : quadruped;
+  static const std::vector<std::string> names[kCharacterCount] = {
+      {"legFrame"}, {"front", "back"}, {"front", "middle", "back"}, {"front", "frontMiddle", "backMiddle", "back"}};
+  return names[static_cast<int>(c)];
 }
 
 const std::vector<std::string>& legNames(Character c) {
-  static const std::vector<std::string> biped = {"left", "right"},
-                                        quadruped = {"frontLeft", "frontRight", "backLeft", "backRight"};
-  return c == Character::Biped ? biped : quadruped;
+  // Each leg frame's left leg, then its right (body/creature.h numbers them so).
+  static const std::array<std::vector<std::string>, kCharacterCount> names = [] {
+    std::array<std::vector<std::string>, kCharacterCount> out{{{"left", "right"}}};
+    for (int k = 1; k < kCharacterCount; ++k) {
+      for (const std::string& frame : legFrameNames(kCharacters[k])) {
+        out[k].push_back(frame + "Left");
+        out[k].push_back(frame + "Right");
+      }
+    }
+    return out;
+  }();
+  return names[static_cast<int>(c)];
 }
 
-const char* characterName(Character c) { return c == Character::Biped ? "biped" : "quadruped"; }
+const char* characterName(Character c) {
+  static const char* const names[kCharacterCount] = {"biped", "quadruped", "hexapod", "octopod"};
+  return names[static_cast<int>(c)];
+}
 
 std::optional<Character> characterFromName(const std::string& name) {
   for (Character c : kCharacters) {
@@ -264,7 +291,7 @@ std::optional<Character> characterFromName(const std::string& name) {
 
 std::optional<Character> characterFromKind(int kind) {
   for (Character c : kCharacters) {
-    if (kind == static_cast<int>(c)) return c;
+    if (kind == kindNumber(c)) return c;
   }
   return std::nullopt;
 }
@@ -277,7 +304,8 @@ const ParamSpec* findParam(Character c, const std::string& name) {
 }
 
 Character characterOf(const body::Morphology& m) {
-  return m.legFrames.size() == 1 ? Character::Biped : Character::Quadruped;
+  // body/creature.h refuses a body of no leg frame or more than kCharacterCount.
+  return kCharacters[std::clamp<size_t>(m.legFrames.size(), 1, kCharacterCount) - 1];
 }
 
 void forEachParam(Character c, GaitParams& params, const std::function<void(const ParamField&)>& visit) {
@@ -334,7 +362,7 @@ std::string schemaJson(std::optional<Character> only) {
 
     // The body the parameters belong to: which leg frame each leg hangs from, and its side (the
     // sign of its hip's x in the rest pose: the character faces +z, so +x is its left).
-    const body::Morphology& m = morphologyOf(c);
+    const body::Morphology& m = shippedBody(c);
     ordered frames = ordered::array(), legs = ordered::array();
     for (size_t i = 0; i < legFrameNames(c).size(); ++i)
       frames.push_back({{"index", i}, {"name", legFrameNames(c)[i]}});
@@ -348,7 +376,7 @@ std::string schemaJson(std::optional<Character> only) {
       legs.push_back({{"index", i}, {"name", legNames(c)[i]}, {"legFrame", frame},
                       {"side", left ? "left" : "right"}});
     }
-    morphologies[characterName(c)] = {{"kind", static_cast<int>(c)}, {"legFrames", frames}, {"legs", legs}};
+    morphologies[characterName(c)] = {{"kind", kindNumber(c)}, {"legFrames", frames}, {"legs", legs}};
   }
   return ordered{{"version", kSchemaVersion}, {"characters", characters}, {"morphologies", morphologies}}.dump();
 }

@@ -22,21 +22,43 @@
 
 namespace gaitlab::gait {
 
-// The kinds of character: the one list of them. Their numbers are the C ABI's GL_KIND_BIPED and
-// GL_KIND_QUADRUPED (native/src/api/c_api.cpp checks it); the simulation uses this enum too; the
-// page reads them from the exported schema ("morphologies": {name: {"kind": n, ...}}).
-enum class Character { Biped = 0, Quadruped = 1 };
-constexpr Character kCharacters[] = {Character::Biped, Character::Quadruped};
+// The kinds of character: the one list of them. A kind is a layout of legs, one pair on each of
+// one to four leg frames (body/creature.h), and names its leg frames and legs, so that a gait
+// file, the optimiser's vector and a share link mean the same on every body of that layout.
+// Each kind also has a shipped body (shippedBody): the biped, the quadruped, the insect and the
+// spider (public/creatures/). Their numbers are the C ABI's GL_KIND_* (native/src/api/c_api.cpp
+// checks it); the simulation uses this enum too; the page reads them from the exported schema
+// ("morphologies": {name: {"kind": n, ...}}). The enum's values index tables (0 to
+// kCharacterCount − 1); the C ABI's numbers are kindNumber's (2 and 3 were taken by the box and
+// the alternating layout before there were more kinds than two).
+enum class Character { Biped = 0, Quadruped = 1, Hexapod = 2, Octopod = 3 };
+constexpr Character kCharacters[] = {Character::Biped, Character::Quadruped, Character::Hexapod,
+                                     Character::Octopod};
+constexpr int kCharacterCount = 4;
 
-const char* characterName(Character c);                            // "biped", "quadruped"
+// "biped", "quadruped", "hexapod", "octopod"
+const char* characterName(Character c);
 std::optional<Character> characterFromName(const std::string& name);
-// The character of a kind number (GL_KIND_*), or nullopt for a number that is not a character.
+// The C ABI's number of a kind (GL_KIND_BIPED 0, GL_KIND_QUADRUPED 1, GL_KIND_HEXAPOD 4,
+// GL_KIND_OCTOPOD 5), and the character of such a number, or nullopt for a number that is not a
+// character (GL_KIND_BOX is 2, GL_LAYOUT_ALTERNATING 3).
+constexpr int kindNumber(Character c) {
+  return c == Character::Biped ? 0 : c == Character::Quadruped ? 1 : c == Character::Hexapod ? 4 : 5;
+}
 std::optional<Character> characterFromKind(int kind);
-Character characterOf(const body::Morphology& morphology);  // by its number of leg frames
+// By its number of leg frames: 1 biped, 2 quadruped, 3 hexapod, 4 octopod.
+Character characterOf(const body::Morphology& morphology);
+// The kind's shipped body (public/creatures/{biped,quadruped,insect,spider}.json), built once.
+const body::Morphology& shippedBody(Character c);
+// Whether the kind's gait is derived from its body (gait/derived_gait.h) rather than a tuned
+// preset (public/presets/): the kinds of more than two leg frames.
+bool derivesGait(Character c);
 
 // The names parameters use for a character's leg frames and legs, in morphology order
 // (body/morphology.cpp): biped {legFrame} and {left, right}; quadruped {front, back} and
-// {frontLeft, frontRight, backLeft, backRight}.
+// {frontLeft, frontRight, backLeft, backRight}; hexapod {front, middle, back} and its legs
+// {frontLeft, frontRight, middleLeft, middleRight, backLeft, backRight}; octopod {front,
+// frontMiddle, backMiddle, back} and its eight legs named the same way.
 const std::vector<std::string>& legFrameNames(Character c);
 const std::vector<std::string>& legNames(Character c);
 
@@ -92,6 +114,8 @@ void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi);
 // character.
 std::string schemaJson(std::optional<Character> only = std::nullopt);
 
+// The kinds of more than two leg frames came without a new version: they add files no older
+// reader had, and change none it had.
 constexpr int kSchemaVersion = 8;
 
 }  // namespace gaitlab::gait

@@ -160,8 +160,9 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
 
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
-                          const Ground& ground, bool ramp) {
+                          const Ground& ground, bool ramp, const body::Morphology* body) {
   sim::WalkOptions w;
+  w.body = body;
   w.terrain = ground.terrain;
   w.heading = ground.heading;
   w.character = c;
@@ -217,8 +218,10 @@ double timingDeviation(const std::vector<double>& measured, const std::vector<do
 }
 
 ObjectiveTerms runBoxHitEpisode(gait::Character c, const gait::Gait& gait,
-                                const ObjectiveSettings& settings, double speed, int index, uint32_t seed) {
+                                const ObjectiveSettings& settings, double speed, int index, uint32_t seed,
+                                const body::Morphology* body) {
   sim::BoxHitOptions o;
+  o.walk.body = body;
   o.walk.character = c;
   o.walk.gait = &gait;
   o.walk.speed = speed;
@@ -244,7 +247,7 @@ ObjectiveTerms runBoxHitEpisode(gait::Character c, const gait::Gait& gait,
 }
 
 ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
-                        const ObjectiveSettings& settings, uint32_t seed) {
+                        const ObjectiveSettings& settings, uint32_t seed, const body::Morphology* body) {
   ObjectiveTerms mean;
   int episodes = 0;
   // Every episode, walking or box-hit, counts once in the mean (a box-hit episode's walking
@@ -275,12 +278,12 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   for (const Ground& ground : settings.grounds) {
     for (const Goal& goal : goals) {
       for (int start = 0; start < settings.starts; ++start) {
-        add(runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp));
+        add(runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp, body));
       }
     }
   }
   for (double speed : settings.speeds)
-    for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed));
+    for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed, body));
   if (episodes) {
     for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fk, &mean.fall, &mean.total}) *v /= episodes;
   }

@@ -46,6 +46,7 @@
 #include <string>
 #include <vector>
 
+#include "body/morphology.h"
 #include "gait/schema.h"
 #include "gait/speed_keys.h"
 #include "physics/terrain.h"
@@ -184,20 +185,24 @@ double trackingMisses(int samples, int within);
 // One episode: the character walks with `params` on `ground` from start state `start` at goal
 // `speed` (sim::runWalk with the recorder observing every step); with `ramp`, the goal ramps
 // from 0 up to `speed` at half the episode and back to 0 at its end. `seed` fixes the start nudge's
-// direction, the pushes' phases and the bumps.
+// direction, the pushes' phases and the bumps. `body`: the character's body (a creature file's,
+// of the kind `c`), or nullptr for the kind's shipped body.
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
-                          const Ground& ground = Ground{}, bool ramp = false);
+                          const Ground& ground = Ground{}, bool ramp = false,
+                          const body::Morphology* body = nullptr);
 
 // The objective of a parameter set: the mean over every ground × speed × start state. Deterministic:
 // the same inputs give the same bits (each episode is its own single-threaded simulation).
 ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
-                        const ObjectiveSettings& settings, uint32_t seed);
+                        const ObjectiveSettings& settings, uint32_t seed,
+                        const body::Morphology* body = nullptr);
 
 // One box-hit episode (settings.boxHits): throw `index` at goal `speed` with the evaluation's
 // `seed`; a throw that misses is thrown again from new draws, up to three times (no hit: no
 // fall). Its terms are zero but for the fall penalty.
 ObjectiveTerms runBoxHitEpisode(gait::Character c, const gait::Gait& gait,
-                                const ObjectiveSettings& settings, double speed, int index, uint32_t seed);
+                                const ObjectiveSettings& settings, double speed, int index, uint32_t seed,
+                                const body::Morphology* body = nullptr);
 
 }  // namespace gaitlab::optimize

@@ -69,7 +69,8 @@ ObjectiveTerms Optimizer::score(const gait::GaitParams& params) const {
   // The same episodes (start states, push phases) for every candidate of every generation, so
   // objectives are comparable; they follow from the search seed.
   const uint32_t episodeSeed = static_cast<uint32_t>(options_.seed * 2654435761u + 12345u);
-  return evaluate(options_.character, gaitWith(params), options_.objective, episodeSeed);
+  return evaluate(options_.character, gaitWith(params), options_.objective, episodeSeed,
+                  options_.body ? &*options_.body : nullptr);
 }
 
 gait::Gait Optimizer::gaitWith(const gait::GaitParams& params) const {

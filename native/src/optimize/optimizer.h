@@ -17,6 +17,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,9 @@ constexpr int kMinCandidates = 2, kMaxCandidates = 1000;
 
 struct SearchOptions {
   gait::Character character = gait::Character::Biped;
+  // The body every episode walks with (a creature file's, whose kind is `character`); empty: the
+  // kind's shipped body (gait::shippedBody).
+  std::optional<body::Morphology> body;
   Method method = Method::Greedy;
   int candidates = 10;  // K per generation (thesis: the best + 9 perturbed copies)
   uint64_t seed = 1;

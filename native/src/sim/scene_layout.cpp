@@ -13,6 +13,8 @@ Character crowdKind(Crowd crowd, int i) {
   switch (crowd) {
     case Crowd::Bipeds: return Character::Biped;
     case Crowd::Quadrupeds: return Character::Quadruped;
+    case Crowd::Hexapods: return Character::Hexapod;
+    case Crowd::Octopods: return Character::Octopod;
     case Crowd::Mixed: break;
   }
   return i % 2 == 0 ? Character::Biped : Character::Quadruped;

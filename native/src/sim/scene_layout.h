@@ -20,7 +20,7 @@ using gait::Character;
 
 // Who makes up a crowd: thesis §4.1 measured bipeds and quadrupeds apart; the demo page mixes
 // them, alternating so that each type spreads over the whole grid.
-enum class Crowd { Bipeds, Quadrupeds, Mixed };
+enum class Crowd { Bipeds, Quadrupeds, Mixed, Hexapods, Octopods };
 // The type of the i-th character of a crowd (Mixed: a biped first, then in turn).
 Character crowdKind(Crowd crowd, int i);
 

@@ -34,8 +34,8 @@ struct SceneRandom {
 
 Simulation::Simulation(int threads, uint32_t seed, int shards)
     : seed_(seed ? seed : 1),
-      biped_(body::makeBiped()),
-      quadruped_(body::makeQuadruped()),
+      bodies_{gait::shippedBody(Character::Biped), gait::shippedBody(Character::Quadruped),
+              gait::shippedBody(Character::Hexapod), gait::shippedBody(Character::Octopod)},
       shards_(shards, seed_),
       stepping_(threads) {
   publish();
@@ -52,7 +52,7 @@ int Simulation::spawn(Character kind, double x, double z, double heading) {
 }
 
 void Simulation::setBody(Character kind, const body::Morphology& morphology) {
-  (kind == Character::Biped ? biped_ : quadruped_) = morphology;
+  bodies_[static_cast<int>(kind)] = morphology;
 }
 
 int Simulation::spawnBox(double x, double z, double heading) {
@@ -69,7 +69,7 @@ int Simulation::spawnBox(double x, double z, double heading) {
 
 int Simulation::spawnCharacter(Character kind, double x, double z, double heading, int shard) {
   if (characterRoom(kind) < 1) return -1;
-  return spawnBody(kind == Character::Biped ? biped_ : quadruped_, kind, x, z, heading, shard);
+  return spawnBody(bodies_[static_cast<int>(kind)], kind, x, z, heading, shard);
 }
 
 int Simulation::spawnCreature(const body::Morphology& morphology, double x, double z, double heading) {
@@ -93,8 +93,9 @@ int Simulation::spawnBody(const body::Morphology& m, Character kind, double x, d
   a.kind = kind;
   shards_.addAgent(&a);
   world.reserve();  // scene building, not the next step, sizes the solver for the new figure
-  // A body of more than two leg frames has no preset: it walks the gait derived from it.
-  if (m.legFrames.size() > 2) a.controller.setGait(gait::Gait::single(gait::derivedGait(m)));
+  // A body of more than two leg frames has no preset: it walks the gait derived from it (its kind's
+  // default gait is the one derived from the kind's shipped body, gait/defaults.h).
+  if (gait::derivesGait(kind)) a.controller.setGait(gait::Gait::single(gait::derivedGait(m), gait::kDerivedFromSpeed));
   render_.addCharacter(*a.body, id);
   return id;
 }
@@ -163,8 +164,12 @@ void Simulation::creatureScene(const body::Morphology& morphology, int character
 // ---- Capacity -----------------------------------------------------------------------------------
 
 namespace {
-int64_t bytesOf(int kindOrBox) {
-  return kindOrBox == 0 ? kBipedBytes : kindOrBox == 1 ? kQuadrupedBytes : kBoxBytes;
+// Memory a body takes: measured for the biped and the quadruped (capacity.h); any other body's as
+// the quadruped's in proportion to its segments.
+int64_t bytesOf(const body::Morphology& m, Character kind, const body::Morphology& quadruped) {
+  if (kind == Character::Biped) return kBipedBytes;
+  if (kind == Character::Quadruped) return kQuadrupedBytes;
+  return kQuadrupedBytes / static_cast<int64_t>(quadruped.segments.size()) * static_cast<int64_t>(m.segments.size());
 }
 // How many things of `bytes` and `bodies` the heap can still afford (natively: no heap limit).
 int heapRoom(int64_t bytes, int bodies, int worldBodies) {
@@ -176,13 +181,12 @@ int heapRoom(int64_t bytes, int bodies, int worldBodies) {
 }  // namespace
 
 int Simulation::characterRoom(Character kind) const {
-  return roomFor(kind == Character::Biped ? biped_ : quadruped_, bytesOf(static_cast<int>(kind)));
+  const body::Morphology& m = bodies_[static_cast<int>(kind)];
+  return roomFor(m, bytesOf(m, kind, bodies_[static_cast<int>(Character::Quadruped)]));
 }
 
 int Simulation::creatureRoom(const body::Morphology& m) const {
-  // Its memory as the quadruped's (sim/capacity.h), in proportion to its bodies.
-  const int64_t perSegment = kQuadrupedBytes / static_cast<int64_t>(quadruped_.segments.size());
-  return roomFor(m, perSegment * static_cast<int64_t>(m.segments.size()));
+  return roomFor(m, bytesOf(m, gait::characterOf(m), bodies_[static_cast<int>(Character::Quadruped)]));
 }
 
 int Simulation::roomFor(const body::Morphology& m, int64_t bytes) const {
@@ -198,16 +202,16 @@ int Simulation::boxRoom() const {
                                heapRoom(kBoxBytes, 1, render_.count())}));
 }
 
-std::string Simulation::fullReason(int kindOrBox) const {
-  const bool box = kindOrBox == 2;
-  const int segments = box ? 1 : static_cast<int>((kindOrBox == 0 ? biped_ : quadruped_).segments.size());
+std::string Simulation::fullReason(std::optional<Character> kind) const {
+  const bool box = !kind;
+  const int segments = box ? 1 : static_cast<int>(bodies_[static_cast<int>(*kind)].segments.size());
   if (box && boxes_ >= limits::kMaxBoxes)
     return "the scene holds " + std::to_string(limits::kMaxBoxes) + " boxes, the most a simulation takes";
   if (kRenderCapacity - render_.count() < segments)
     return "the render buffer is full (" + std::to_string(kRenderCapacity) + " bodies)";
   if (ids_.room() < 1) return "every id is in use";
   return "the module's memory is nearly full (" + std::to_string(std::max<int64_t>(0, heapHeadroom()) >> 20) +
-         " MiB left beside its reserve, and another " + (box ? std::string("box") : kindOrBox == 0 ? "biped" : "quadruped") +
+         " MiB left beside its reserve, and another " + (box ? std::string("box") : gait::characterName(*kind)) +
          " with the physics world's growth needs more)";
 }
 

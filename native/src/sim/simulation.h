@@ -15,9 +15,11 @@
 // loop and in gl_sim_character_info, which shifts when a character is removed: what loops over
 // the crowd use). indexOf and idOf convert.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -167,8 +169,9 @@ class Simulation {
   // the heap left (capacity.h). A spawn beyond it is refused before it allocates.
   int characterRoom(Character kind) const;
   int boxRoom() const;
-  // Why the room is 0 (what is full), for the refusal's message.
-  std::string fullReason(int kindOrBox) const;
+  // Why the room is 0 (what is full) for a character of `kind`, or a box (nullopt), for the
+  // refusal's message.
+  std::string fullReason(std::optional<Character> kind) const;
   int boxCount() const { return boxes_; }
 
   // ---- Output ---------------------------------------------------------------------------------
@@ -238,7 +241,8 @@ class Simulation {
   void removeOldestThrown();  // interaction.cpp: the oldest thrown box leaves the scene
 
   uint32_t seed_;
-  body::Morphology biped_, quadruped_;
+  // The body each kind of character is spawned with (gait::shippedBody unless setBody).
+  std::array<body::Morphology, gait::kCharacterCount> bodies_;
   // The bodies of creatures spawned (spawnCreature), one per spawn: a deque, so that the agents'
   // references to them stay valid as more are added.
   std::deque<body::Morphology> creatures_;

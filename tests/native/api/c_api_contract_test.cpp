@@ -90,7 +90,7 @@ TEST(CApiContract, EveryRefusalReturnsItsFailureValueAndNamesTheArgument) {
       {"gl_sim_demo_scene", [&] { return gl_sim_demo_scene(sim, -1) == GL_ERR_ARGUMENT; }, "characters: -1 "},
       {"gl_sim_step", [&] { return gl_sim_step(sim, -3) == GL_ERR_ARGUMENT; }, "steps: -3 "},
       {"gl_preset_json", [&] { return gl_preset_json(GL_KIND_BOX) == nullptr; }, "kind: 2 "},
-      {"gl_sim_set_params kind", [&] { return gl_sim_set_params(sim, biped, 5, "{}") == GL_ERR_KIND; }, "kind: 5 "},
+      {"gl_sim_set_params kind", [&] { return gl_sim_set_params(sim, biped, 7, "{}") == GL_ERR_KIND; }, "kind: 7 "},
       {"gl_sim_set_params id", [&] { return gl_sim_set_params(sim, 77, GL_KIND_BIPED, "{}") == GL_ERR_NO_CHARACTER; },
        "id: no character has id 77"},
       {"gl_sim_set_params file",

@@ -50,7 +50,7 @@ TEST(OptimizeCApi, StepsAGenerationAtATimeAndReturnsTheBestAsAGaitFile) {
 
 TEST(OptimizeCApi, RefusesBadInputWithAMessage) {
   EXPECT_EQ(create(GL_KIND_BOX, 0, 3, 1, 1, nullptr, nullptr), nullptr);
-  EXPECT_EQ(std::string(gl_last_error()), "kind: 2 is not GL_KIND_BIPED or GL_KIND_QUADRUPED");
+  EXPECT_EQ(std::string(gl_last_error()), "kind: 2 is not a character's (GL_KIND_BIPED, GL_KIND_QUADRUPED, GL_KIND_HEXAPOD or GL_KIND_OCTOPOD)");
   EXPECT_EQ(create(GL_KIND_BIPED, 0, 3, 1, 1, "{}", nullptr), nullptr);
   EXPECT_NE(std::string(gl_last_error()).find("format"), std::string::npos);
   EXPECT_EQ(create(GL_KIND_BIPED, 0, 3, 1, 1, nullptr, R"({"wr": -2})"), nullptr);

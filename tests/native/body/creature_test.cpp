@@ -196,24 +196,32 @@ TEST(Creature, CreaturesWalkInASimulationAlikeOnAnyNumberOfThreads) {
   EXPECT_EQ(hashes[0], hashes[1]);
 }
 
-// Through the C ABI, as the page does it: a six-legged creature is spawned from its file's text, and
-// gait files, which name a quadruped's four legs, neither reach it by kind nor by its id.
-TEST(Creature, ACreatureOfThreeLegFramesTakesNoGaitFile) {
+// Through the C ABI, as the page does it: a six-legged creature is spawned from its file's text.
+// It is a hexapod: gait files of that kind reach it, by kind and by id, and a quadruped's does not.
+TEST(Creature, ACreatureOfThreeLegFramesTakesHexapodGaitFiles) {
   void* s = gl_sim_create(1, 1);
   const std::string insect = readText("public/creatures/insect.json");
   const int id = gl_sim_spawn_creature(s, insect.c_str(), 0, 0, 0);
   ASSERT_GE(id, 0) << gl_last_error();
   const int dog = gl_sim_spawn(s, GL_KIND_QUADRUPED, 3, 0, 0);
-  const char* preset = gl_preset_json(GL_KIND_QUADRUPED);
-  EXPECT_EQ(gl_sim_set_params(s, id, GL_KIND_QUADRUPED, preset), GL_ERR_KIND);
-  EXPECT_NE(std::string(gl_last_error()).find("has a body of 3 leg frames"), std::string::npos) << gl_last_error();
-  EXPECT_EQ(gl_sim_get_params(s, id), nullptr);
-  const std::string before = gl_sim_get_params(s, dog);
-  EXPECT_EQ(gl_sim_patch_params(s, -1, GL_KIND_QUADRUPED, "{\"period\": 0.31}"), GL_OK);  // the dog only
-  EXPECT_NE(std::string(gl_sim_get_params(s, dog)), before);
+  EXPECT_EQ(gl_sim_set_params(s, id, GL_KIND_QUADRUPED, gl_preset_json(GL_KIND_QUADRUPED)), GL_ERR_KIND);
+  EXPECT_EQ(std::string(gl_last_error()), "kind: character " + std::to_string(id) + " is not a quadruped");
+  // What it walks is the gait derived from its own body, as a hexapod's gait file.
+  const std::string own = gl_sim_get_params(s, id);
+  EXPECT_NE(own.find("\"character\": \"hexapod\""), std::string::npos) << own.substr(0, 200);
+  const std::string dogBefore = gl_sim_get_params(s, dog);
+  EXPECT_EQ(gl_sim_patch_params(s, -1, GL_KIND_HEXAPOD, "{\"period\": 0.5, \"middleLeft.dutyFactor\": 0.6}"), GL_OK)
+      << gl_last_error();
+  EXPECT_EQ(std::string(gl_sim_get_params(s, dog)), dogBefore);  // the dog is not a hexapod
+  const json patched = json::parse(gl_sim_get_params(s, id));
+  EXPECT_EQ(patched["params"]["period"], 0.5);
+  EXPECT_EQ(patched["params"]["middleLeft.dutyFactor"], 0.6);
+  EXPECT_EQ(gl_sim_set_params(s, id, GL_KIND_HEXAPOD, own.c_str()), GL_OK) << gl_last_error();
+  EXPECT_EQ(std::string(gl_sim_get_params(s, id)), own);
   EXPECT_EQ(gl_sim_step(s, 240), GL_OK);
   double info[2 * GL_INFO_FIELDS];
   ASSERT_EQ(gl_sim_character_info(s, info, 2), 2);
+  EXPECT_EQ(info[GL_INFO_KIND], GL_KIND_HEXAPOD);
   EXPECT_EQ(info[GL_INFO_LEGS], 6.0);
   EXPECT_EQ(info[GL_INFO_FIELDS + GL_INFO_LEGS], 4.0);
   gl_sim_destroy(s);

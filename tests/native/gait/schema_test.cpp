@@ -205,8 +205,9 @@ TEST(Schema, EntriesNameTheirLegOrLegFrameAndTheMorphologyIsExported) {
   ASSERT_FALSE(doc.is_discarded());
   for (Character c : kCharacters) {
     const nlohmann::json& morphology = doc["morphologies"][characterName(c)];
-    EXPECT_EQ(morphology["kind"], static_cast<int>(c));
-    EXPECT_EQ(characterFromKind(static_cast<int>(c)), c);
+    EXPECT_EQ(morphology["kind"], kindNumber(c));
+    EXPECT_EQ(characterFromKind(kindNumber(c)), c);
+    EXPECT_EQ(characterOf(shippedBody(c)), c);
     ASSERT_EQ(morphology["legFrames"].size(), legFrameNames(c).size());
     ASSERT_EQ(morphology["legs"].size(), legNames(c).size());
     for (const nlohmann::json& e : doc["characters"][characterName(c)]) {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "body/morphology.h"
 #include "sim/capacity.h"
 #include "gait/defaults.h"
+#include "gait/derived_gait.h"
 #include "gait/heading.h"
 #include "gait/params_io.h"
 #include "gait/schema.h"
@@ -107,6 +109,14 @@ std::string notACharacter(int kind) {
 }
 std::string notAThing(int kind) { return "kind: " + str(kind) + " is neither a character's nor GL_KIND_BOX"; }
 std::string noCharacter(int id) { return "id: no character has id " + str(id); }
+// A creature file's text read into `body`: "" or the refusal's message, "creature: FIELD: WHAT".
+std::string readCreature(const char* json, gaitlab::body::Morphology* body) {
+  const auto error = gaitlab::body::parseCreatureFile(json ? json : "", body);
+  return error ? "creature: " + error->describe() : "";
+}
+std::string noRoomForCreature(const gaitlab::body::Morphology& body) {
+  return "no room for the creature's " + str(static_cast<int>(body.segments.size())) + " bodies";
+}
 // A thrown box's half size (api/limits.h), or the refusal's message.
 std::string outOfHalf(double half) {
   using namespace gaitlab::limits;
@@ -249,10 +259,17 @@ int gl_sim_spawn_creature(void* s, const char* creatureJson, double x, double z,
     if (!e.empty()) return refuse(GL_ERR_ARGUMENT, e);
   }
   gaitlab::body::Morphology body;
-  if (const auto error = gaitlab::body::parseCreatureFile(creatureJson ? creatureJson : "", &body))
-    return refuse(GL_ERR_ARGUMENT, "creature: " + error->describe());
+  if (const std::string error = readCreature(creatureJson, &body); !error.empty()) return refuse(GL_ERR_ARGUMENT, error);
   const int id = sim(s)->spawnCreature(body, x, z, heading);
-  if (id < 0) return refuse(GL_ERR_FULL, "no room for the creature's " + str(static_cast<int>(body.segments.size())) + " bodies");
+  if (id < 0) return refuse(GL_ERR_FULL, noRoomForCreature(body));
+  return id;
+}
+
+int gl_sim_add_apart_creature(void* s, const char* creatureJson) {
+  gaitlab::body::Morphology body;
+  if (const std::string error = readCreature(creatureJson, &body); !error.empty()) return refuse(GL_ERR_ARGUMENT, error);
+  const int id = sim(s)->addApartCreature(body);
+  if (id < 0) return refuse(GL_ERR_FULL, noRoomForCreature(body));
   return id;
 }
 
@@ -524,9 +541,24 @@ void gl_opt_defaults(gl_opt_settings* o) {
 }
 
 void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, const char* objectiveJson) {
+  return gl_opt_create_creature(settings, startJson, objectiveJson, nullptr);
+}
+
+void* gl_opt_create_creature(const gl_opt_settings* settings, const char* startJson, const char* objectiveJson,
+                             const char* creatureJson) {
   using namespace gaitlab;
   gait::Character c;
   if (!characterKind(settings->kind, &c)) return refuse<void*>(nullptr, notACharacter(settings->kind));
+  std::optional<body::Morphology> body;
+  if (creatureJson) {
+    body.emplace();
+    if (const std::string error = readCreature(creatureJson, &*body); !error.empty()) return refuse<void*>(nullptr, error);
+    const gait::Character made = gait::characterOf(*body);
+    if (made != c)
+      return refuse<void*>(nullptr, "kind: " + str(settings->kind) + " is the " + gait::characterName(c) +
+                                        "'s, and the creature's " + str(static_cast<int>(body->legFrames.size())) +
+                                        " leg frames make a " + gait::characterName(made));
+  }
   if (settings->method != GL_METHOD_GREEDY && settings->method != GL_METHOD_CMAES)
     return refuse<void*>(nullptr, "method: " + str(settings->method) + " is not GL_METHOD_GREEDY or GL_METHOD_CMAES");
   if (settings->candidates < optimize::kMinCandidates || settings->candidates > optimize::kMaxCandidates)
@@ -534,6 +566,7 @@ void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, cons
                                       str(optimize::kMinCandidates) + ", " + str(optimize::kMaxCandidates) + "]");
   optimize::SearchOptions o;
   o.character = c;
+  o.body = body;
   o.method = settings->method == GL_METHOD_CMAES ? optimize::Method::CmaEs : optimize::Method::Greedy;
   o.candidates = settings->candidates;
   o.seed = settings->seed;
@@ -544,8 +577,11 @@ void* gl_opt_create(const gl_opt_settings* settings, const char* startJson, cons
     if (const auto error = gait::parseGaitFile(startJson, c, &start))
       return refuse<void*>(nullptr, "start: " + error->describe());
   }
-  // The search tunes the start's primary key ("params"); its other speed keys walk with it.
-  o.gait = startJson ? start.gait : gait::defaultGait(c);
+  // The search tunes the start's primary key ("params"); its other speed keys walk with it. A
+  // creature starts from what it walks when spawned (sim::Simulation::spawnBody).
+  o.gait = startJson ? start.gait
+           : body && gait::derivesGait(c) ? gait::Gait::single(gait::derivedGait(*body), gait::kDerivedFromSpeed)
+                                          : gait::defaultGait(c);
   o.key = o.gait.primary;
   if (objectiveJson) {
     if (const auto error = gait::checkJsonText(objectiveJson))

@@ -153,6 +153,9 @@ GL_EXPORT int gl_sim_add_apart(void* sim, int kind);
 // message names the field, "creature: legFrames[1].mass: ...") or a position or heading as
 // gl_sim_spawn refuses them, GL_ERR_FULL when there is no room for its bodies.
 GL_EXPORT int gl_sim_spawn_creature(void* sim, const char* creatureJson, double x, double z, double heading);
+// The same at the layout's place apart (gl_sim_add_apart): the optimize panel's learner when it
+// learns for a creature's body. Returns its id, or an error as gl_sim_spawn_creature.
+GL_EXPORT int gl_sim_add_apart_creature(void* sim, const char* creatureJson);
 
 // The demo page's scene: gl_sim_add_characters(sim, GL_LAYOUT_ALTERNATING, characters) on a new
 // simulation, plus a few boxes dropped at places drawn from the seed. GL_OK, or GL_ERR_ARGUMENT
@@ -387,6 +390,14 @@ GL_EXPORT void gl_opt_defaults(gl_opt_settings* settings);
 // pthread pool cannot supply now (gl_sim_create).
 GL_EXPORT void* gl_opt_create(const gl_opt_settings* settings, const char* start_json,
                               const char* objective_json);
+// The same for the body of a creature file (`creature_json`, as gl_sim_spawn_creature reads it)
+// rather than the kind's shipped one: every episode walks that body, and with `start_json` NULL
+// the search starts from the gait the body walks when spawned (for three or four leg frames, the
+// one derived from it). settings->kind must be the kind its leg frames make ("kind: ..." names
+// both otherwise); a refused file is "creature: FIELD: WHAT". NULL `creature_json` is
+// gl_opt_create.
+GL_EXPORT void* gl_opt_create_creature(const gl_opt_settings* settings, const char* start_json,
+                                       const char* objective_json, const char* creature_json);
 GL_EXPORT void gl_opt_destroy(void* opt);  // NULL is allowed
 // The objective settings gl_opt_create accepts, for forms that check them before a search:
 // {"settings":[{"name","min","max","default","unit","description","integer"},...],

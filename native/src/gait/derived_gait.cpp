@@ -1,8 +1,11 @@
 #include "gait/derived_gait.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "gait/defaults.h"
+#include "gait/schema.h"
 #include "gait/speed_keys.h"
 
 namespace gaitlab::gait {
@@ -42,6 +45,13 @@ GaitParams derivedGait(const body::Morphology& m) {
     p.legs[l].stepTrigger = 0.5 * ((pair + side) % 2);
     p.legs[l].dutyFactor = kDerivedDutyFactor;
   }
+  // Within the schema's bounds, so that what the body walks is a gait file of its kind: a body of
+  // shorter legs than the quadruped's would step faster than the shortest period (0.3 s) allows.
+  const Character c = characterOf(m);
+  std::vector<double> v = toVector(c, p), lo, hi;
+  bounds(c, &lo, &hi);
+  for (size_t i = 0; i < v.size(); ++i) v[i] = std::clamp(v[i], lo[i], hi[i]);
+  fromVector(c, v, &p);
   return p;
 }
 

@@ -14,6 +14,8 @@
 // - Scale: bodies of equal Froude number move alike (Alexander & Jayes 1983), so the period
 //   scales by √(L / L₀) and the lengths the gait places feet at (step offsets, step height) by
 //   L / L₀, with L the leg's length (upper + lower) and L₀ the quadruped's.
+// - Every value then within the schema's bounds of the body's kind (gait/schema.h), so that the
+//   gait is a gait file of that kind: it can be read, edited, searched and shared as any other.
 //
 // Bodies of one or two leg frames have tuned gaits, the shipped presets; this is for the others.
 #pragma once

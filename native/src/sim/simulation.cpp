@@ -118,6 +118,11 @@ int Simulation::addApart(Character kind) {
   return spawn(kind, p.x, p.z, p.heading);
 }
 
+int Simulation::addApartCreature(const body::Morphology& morphology) {
+  const Place p = layout_.apart();
+  return spawnCreature(morphology, p.x, p.z, p.heading);
+}
+
 void Simulation::demoScene(int characters) {
   addCharacters(Crowd::Mixed, characters);
   // The boxes scatter over the grid's width, so some land among the characters.

@@ -76,6 +76,8 @@ class Simulation {
   // One character at the layout's place apart (left of the grid), as spawn() places it: where
   // the optimize panel's learner walks alone. Returns its id, or -1.
   int addApart(Character kind);
+  // A creature (spawnCreature) at the layout's place apart.
+  int addApartCreature(const body::Morphology& morphology);
   // The demo page's scene: `characters` figures of a mixed crowd in the page's layout
   // (addCharacters(Crowd::Mixed, characters) on a new simulation), plus a few boxes dropped at
   // places drawn from the seed, props for the tests to push against.

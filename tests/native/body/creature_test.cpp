@@ -7,6 +7,8 @@
 #include "api/c_api.h"
 
 #include "gait/derived_gait.h"
+#include "gait/defaults.h"
+#include "gait/params_io.h"
 #include "sim/simulation.h"
 #include "sim/walk_trial.h"
 
@@ -225,6 +227,75 @@ TEST(Creature, ACreatureOfThreeLegFramesTakesHexapodGaitFiles) {
   EXPECT_EQ(info[GL_INFO_LEGS], 6.0);
   EXPECT_EQ(info[GL_INFO_FIELDS + GL_INFO_LEGS], 4.0);
   gl_sim_destroy(s);
+}
+
+// The optimize panel's learning for a designed body, through the C ABI: a search over the body of a
+// creature file starts from the gait derived from it, every episode walks that body, and the
+// learner walks it apart from the crowd. A body of another kind and a bad file are refused.
+TEST(Creature, ASearchLearnsForACreaturesOwnBody) {
+  const std::string insect = readText("public/creatures/insect.json");
+  gl_opt_settings settings;
+  gl_opt_defaults(&settings);
+  settings.candidates = 2;
+  const char* objective = R"({"seconds": 1.5, "speeds": [0.4]})";
+  EXPECT_EQ(gl_opt_create_creature(&settings, nullptr, objective, insect.c_str()), nullptr);
+  EXPECT_EQ(std::string(gl_last_error()), "kind: 0 is the biped's, and the creature's 3 leg frames make a hexapod");
+  settings.kind = GL_KIND_HEXAPOD;
+  json bad = json::parse(insect);
+  bad["legFrames"][2]["mass"] = -1;
+  EXPECT_EQ(gl_opt_create_creature(&settings, nullptr, objective, bad.dump().c_str()), nullptr);
+  EXPECT_EQ(std::string(gl_last_error()), "creature: legFrames[2].mass: -1.0 is outside [0.01, 500.0]");
+
+  // A longer-legged insect: its derived gait differs from the shipped insect's (the hexapod's default).
+  json tall = json::parse(insect);
+  for (json& frame : tall["legFrames"]) frame["legs"]["lower"]["length"] = frame["legs"]["lower"]["length"].get<double>() * 1.3;
+  void* search = gl_opt_create_creature(&settings, nullptr, objective, tall.dump().c_str());
+  ASSERT_NE(search, nullptr) << gl_last_error();
+  void* shipped = gl_opt_create(&settings, nullptr, objective);
+  ASSERT_NE(shipped, nullptr) << gl_last_error();
+  // Before the first generation the best is the start: the body's own derived gait (the period
+  // scales with √ of the leg's length), not the shipped insect's.
+  const double period = json::parse(gl_opt_best_json(search))["params"]["period"].get<double>();
+  const double shippedPeriod = json::parse(gl_opt_best_json(shipped))["params"]["period"].get<double>();
+  EXPECT_NEAR(period / shippedPeriod, std::sqrt((0.22 + 1.3 * 0.22) / 0.44), 1e-9);
+  gl_opt_step(search);
+  EXPECT_EQ(gl_opt_evaluations(search), 2);
+  EXPECT_EQ(json::parse(gl_opt_best_json(search))["character"], "hexapod");
+  gl_opt_destroy(search);
+  gl_opt_destroy(shipped);
+
+  void* s = gl_sim_create(1, 1);
+  EXPECT_EQ(gl_sim_add_apart_creature(s, bad.dump().c_str()), GL_ERR_ARGUMENT);
+  const int id = gl_sim_add_apart_creature(s, tall.dump().c_str());
+  ASSERT_GE(id, 0) << gl_last_error();
+  double info[GL_INFO_FIELDS];
+  ASSERT_EQ(gl_sim_character_info(s, info, 1), 1);
+  EXPECT_EQ(info[GL_INFO_LEGS], 6.0);
+  EXPECT_LT(info[GL_INFO_X], -4.0);  // apart: left of the grid
+  gl_sim_destroy(s);
+}
+
+// Whatever the legs' length, the derived gait is a valid gait file of the body's kind (the period
+// of short legs is held at the schema's shortest), and each kind's default reads back as itself.
+TEST(Creature, TheDerivedGaitIsAGaitFileOfItsKind) {
+  for (double scale : {0.5, 1.0, 1.6}) {
+    json insect = json::parse(readText("public/creatures/insect.json"));
+    for (json& frame : insect["legFrames"]) {
+      for (const char* part : {"upper", "lower"})
+        frame["legs"][part]["length"] = frame["legs"][part]["length"].get<double>() * scale;
+    }
+    gaitlab::body::Morphology m;
+    ASSERT_FALSE(gaitlab::body::parseCreatureFile(insect.dump(), &m)) << scale;
+    const std::string text = gaitlab::gait::gaitFileJson(gaitlab::gait::Character::Hexapod, gaitlab::gait::derivedGait(m));
+    gaitlab::gait::GaitFile file;
+    const auto error = gaitlab::gait::parseGaitFile(text, gaitlab::gait::Character::Hexapod, &file);
+    EXPECT_FALSE(error) << scale << ": " << (error ? error->describe() : "");
+  }
+  for (gaitlab::gait::Character c : gaitlab::gait::kCharacters) {
+    gaitlab::gait::GaitFile file;
+    const auto error = gaitlab::gait::parseGaitFile(gaitlab::gait::presetText(c), c, &file);
+    EXPECT_FALSE(error) << gaitlab::gait::characterName(c) << ": " << (error ? error->describe() : "");
+  }
 }
 
 TEST(Creature, ABadFileIsRefusedWithTheFieldNamed) {

@@ -17,8 +17,9 @@ import {
 } from './sim/protocol';
 import { SimClient } from './sim/sim-client';
 import { groundHeight, isTerrainKind, type TerrainKind } from './sim/terrain-grid';
-import { CHARACTER_TYPES, type CharacterType } from './gait/character';
-import { ControlPanel, MAX_TURN_DEGREES, type SteerTarget } from './ui/control-panel';
+import { CHARACTER_TYPES, typeOfLegFrames, type CharacterType } from './gait/character';
+import { ControlPanel, MAX_TURN_DEGREES, speedValue, type SteerTarget } from './ui/control-panel';
+import { CreatureDesigner } from './ui/creature-designer';
 import { GaitEditors } from './ui/gait-editors';
 import { GaitTransfer } from './ui/gait-transfer';
 import { LEARNER_COLOUR, OptimizePanel } from './ui/optimize-panel';
@@ -125,6 +126,21 @@ const panel = new ControlPanel({
   terrain: (kind) => send({ type: 'setTerrain', terrain: kind }),
 });
 
+const creatureUrl = (name: string) => new URL(`${import.meta.env.BASE_URL}creatures/${name}.json`, location.href);
+const designer = new CreatureDesigner(panel.gui, {
+  send,
+  select,
+  creatureUrl,
+  // "Teach it to walk": the optimize panel searches a gait for the designed body.
+  teach: (file) => {
+    const character = typeOfLegFrames(file.legFrames.length);
+    if (!optimizer) throw new Error('the optimize panel is not ready yet');
+    if (!character) throw new Error(`a body of ${file.legFrames.length} leg frames is no kind of character`);
+    optimizer.element.open = true;
+    return optimizer.teach({ json: JSON.stringify(file), name: file.name, character });
+  },
+});
+
 // On a phone the panel is a drawer: folded to its title until opened.
 if (phone.matches) panel.gui.close();
 
@@ -173,6 +189,7 @@ installTestHook({
   groundHeight: (x, z) => (stage?.terrain ? groundHeight(stage.terrain, x, z) : null),
   view: (from, to) => stage?.view(new THREE.Vector3(...from), new THREE.Vector3(...to)),
   ownerAt: (x, y) => pointer?.ownerAt(x, y) ?? null,
+  designer: () => designer,
   camera: () => ({
     distance: stage ? stage.camera.position.distanceTo(stage.controls.target) : 0,
     azimuth: stage ? stage.controls.getAzimuthalAngle() : 0,
@@ -234,11 +251,11 @@ function onKey(event: KeyboardEvent): void {
     const clamp = (x: number, lo: number, hi: number) => Math.min(hi, Math.max(lo, Math.round(x * 100) / 100));
     for (const type of CHARACTER_TYPES) {
       if (target !== 'all' && target.type !== type) continue;
-      const key = type === 'biped' ? 'bipedSpeed' : 'quadrupedSpeed';
+      const key = speedValue(type);
       v[key] = clamp(v[key] + dSpeed, panel.speedRange(type).min, panel.speedRange(type).max);
     }
     v.turnDegrees = clamp(v.turnDegrees + dTurn, -MAX_TURN_DEGREES, MAX_TURN_DEGREES);
-    steer(target, { speed: { biped: v.bipedSpeed, quadruped: v.quadrupedSpeed }, turn: (v.turnDegrees * Math.PI) / 180 });
+    steer(target, { speed: panel.speeds(), turn: (v.turnDegrees * Math.PI) / 180 });
   };
   switch (event.key) {
     case 'w': case 'W': case 'ArrowUp': keySteer(0.1, 0); break;
@@ -297,15 +314,33 @@ if (!window.crossOriginIsolated) {
   const creatureNames = (new URLSearchParams(location.search).get('creature') ?? '').split(',').filter((n) => n !== '');
   const creatureFiles = Promise.all(creatureNames.map(async (name) => {
     if (!/^[a-z0-9-]{1,40}$/.test(name)) throw new Error(`?creature=${name}: not a creature's name`);
-    const response = await fetch(new URL(`${import.meta.env.BASE_URL}creatures/${name}.json`, location.href));
+    const response = await fetch(creatureUrl(name));
     if (!response.ok) throw new Error(`?creature=${name}: no such creature (creatures/${name}.json: ${response.status})`);
     return response.text();
   }));
+  // A creature a link carries (share/link.ts: its body and the gait it learnt), read once the
+  // module can judge the gait, and spawned after the named ones.
+  let linkCreature: Promise<{ json: string; gait: string } | null> | null = null;
+  const readLinkCreature = async (): Promise<{ json: string; gait: string } | null> => {
+    if (!transfer.creatureInPage()) return null;
+    try {
+      const json = await transfer.readCreatureLink();
+      const gait = await transfer.readLink();
+      overlay.message(`Shared ${gait.character} loaded from the link: it walks right of the crowd with the gait it learnt.`);
+      return { json, gait: JSON.stringify(gait) };
+    } catch (error) {
+      overlay.message(`The creature link was refused: ${error instanceof Error ? error.message : String(error)}. Running without it.`, 'problem');
+      return null;
+    }
+  };
   const spawnCreatures = (crowd: number) => {
-    creatureFiles.then((files) => files.forEach((json, k) => {
-      const x = crowd === 0 ? (k - (files.length - 1) / 2) * 2.5 : 6 + 2.5 * k;
-      send({ type: 'spawnCreature', json, x, z: 0, heading: 0, speed: CREATURE_SPEED });
-    }), (error: unknown) => overlay.message(error instanceof Error ? error.message : String(error), 'problem'));
+    const place = (k: number, count: number) => (crowd === 0 ? (k - (count - 1) / 2) * 2.5 : 6 + 2.5 * k);
+    linkCreature ??= readLinkCreature();
+    Promise.all([creatureFiles, linkCreature]).then(([files, shared]) => {
+      const count = files.length + (shared ? 1 : 0);
+      files.forEach((json, k) => send({ type: 'spawnCreature', json, x: place(k, count), z: 0, heading: 0, speed: CREATURE_SPEED }));
+      if (shared) send({ type: 'spawnCreature', json: shared.json, gait: shared.gait, x: place(files.length, count), z: 0, heading: 0, speed: CREATURE_SPEED });
+    }, (error: unknown) => overlay.message(error instanceof Error ? error.message : String(error), 'problem'));
   };
   let framed = false;
   // Gaits in and out of the page (links, files), judged by the module in the sim worker.
@@ -323,6 +358,7 @@ if (!window.crossOriginIsolated) {
       console.info(`gaitlab ${info.version}: scene ${info.generation}, ${reader.capacity} body slots, ${info.threads} threads`);
       if (!gaits) gaits = GaitEditors.create(info.schema, client!, transfer, panel.gaitFolder, overlay);
       spawnCreatures(options.characters);
+      designer.sceneReset();
       if (!optimizer && gaits && info.optimizerSchema) optimizer = createOptimizePanel(info.optimizerSchema);
     },
     onRelease: () => crowd.detach(),
@@ -345,13 +381,17 @@ if (!window.crossOriginIsolated) {
       // The selected character may have been removed.
       if (state.selected !== null && !selectedStatus()) select(null);
       gaits?.tick(selectedStatus(), stats.characters);
+      designer.tick(stats.characters);
     },
     onTerrain: (grid) => {
       stage?.setTerrain(grid);
       panel.setTerrain(grid.kind);
     },
     onError: (message) => showError('The simulation stopped', message),
-    onCommandError: (message) => overlay.message(message, 'problem'),
+    onCommandError: (message) => {
+      designer.commandError(message);
+      overlay.message(message, 'problem');
+    },
   });
 
   const activeStage = stage;
@@ -434,8 +474,16 @@ if (!window.crossOriginIsolated) {
           defaultThreads: Math.max(1, defaultThreads(navigator.hardwareConcurrency) - 1),
           selected: selectedStatus,
           gaitJson: (id) => client!.getParams(id),
-          showLearner: (gait, goal, loopSeconds) =>
-            send({ type: 'learner', character: gait.character, json: JSON.stringify(gait), speed: goal.speed, turn: goal.turn, loopSeconds }),
+          showLearner: (gait, goal, loopSeconds, body) =>
+            send({
+              type: 'learner',
+              character: gait.character,
+              json: JSON.stringify(gait),
+              speed: goal.speed,
+              turn: goal.turn,
+              loopSeconds,
+              ...(body ? { creature: body.json } : {}),
+            }),
           apply: async (gait, target) => {
             if (!gaits) throw new Error('this build has no parameter schema');
             if (target === 'all') {

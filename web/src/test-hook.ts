@@ -3,11 +3,14 @@
 // them (stats(), characters(), getGait(id), shareUrl(id), throwBox(xyz), setGoal(id|'all',
 // {speed, turn}), ...). It only forwards to the page's parts (main.ts hands them over): nothing
 // here keeps state of its own.
+import type { CreatureFile } from './creature/creature-file';
+import type { CreatureDesign } from './creature/design';
 import type { CharacterType } from './gait/character';
 import type { OptimizeForm } from './optimize/options';
 import type { GaitFile, ParamPatch } from './share/gait-file';
 import type { CharacterStatus, SceneCommand, SimCommand, TimeScale, Vec3 } from './sim/protocol';
 import type { TerrainKind } from './sim/terrain-grid';
+import type { CreatureDesigner, DesignPreset } from './ui/creature-designer';
 import type { GaitEditors } from './ui/gait-editors';
 import type { OptimizePanel, OptimizeStatus } from './ui/optimize-panel';
 
@@ -120,6 +123,33 @@ export interface GaitlabHook {
   camera(): { distance: number; azimuth: number };
   /** The owner of the body a click at (x, y) would pick (character id, −1 a prop), or null. */
   ownerAt(x: number, y: number): number | null;
+  /** The creature designer (control panel, "Design a creature"), driven as its controls drive it. */
+  designer: DesignerHook;
+}
+
+/** `window.gaitlab.designer`. */
+export interface DesignerHook {
+  /**
+   * Changes settings as the controls do ({pairs: 3, upperLength: 0.2}; creature/design.ts names
+   * them) and shows the preview: the body is sent after the controls' pause, if it passes the
+   * checks. An unknown setting throws.
+   */
+  set(changes: Partial<CreatureDesign>): void;
+  /** The settings now. */
+  values(): CreatureDesign;
+  /** The designed creature file, or null while the design is refused. */
+  json(): CreatureFile | null;
+  /** Why the design is refused (the checks' reasons, or the module's refusal of the body sent), or null. */
+  error(): string | null;
+  /** The preview character's id, or null before the worker has reported it. */
+  preview(): number | null;
+  /** Loads a shipped creature's settings as the "start from" list does. */
+  preset(name: DesignPreset): Promise<void>;
+  /**
+   * "Teach it to walk": the optimize panel searches a gait for the designed body, after writing
+   * `form` into its fields as optimize() does; resolves with optimizeStatus() when it ends.
+   */
+  teach(form?: OptimizeForm): Promise<OptimizeStatus>;
 }
 
 declare global {
@@ -154,6 +184,7 @@ export interface TestHookHost {
   bodies(): { owner: number; position: Vec3; matrix: number[] }[];
   camera(): { distance: number; azimuth: number };
   ownerAt(x: number, y: number): number | null;
+  designer(): CreatureDesigner;
 }
 
 /** Installs `window.gaitlab`, frozen. */
@@ -200,6 +231,18 @@ export function installTestHook(host: TestHookHost): GaitlabHook {
     bodies: () => host.bodies(),
     camera: () => host.camera(),
     ownerAt: (x, y) => host.ownerAt(x, y),
+    designer: Object.freeze({
+      set: (changes: Partial<CreatureDesign>) => host.designer().set(changes),
+      values: () => host.designer().design(),
+      json: () => host.designer().creatureJson(),
+      error: () => host.designer().error(),
+      preview: () => host.designer().preview(),
+      preset: (name: DesignPreset) => host.designer().loadPreset(name),
+      teach: async (form?: OptimizeForm) => {
+        if (form) optimizer().setForm(form);
+        return (await host.designer().teach()) as OptimizeStatus;
+      },
+    }),
   };
   window.gaitlab = Object.freeze(hook);
   return hook;

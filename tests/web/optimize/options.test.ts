@@ -98,7 +98,7 @@ describe('the optimize form', () => {
   });
 
   it('refuses an unknown character or method', () => {
-    expect(problems({ character: 'hexapod', method: 'annealing' }).map((p) => p.field)).toEqual(['character', 'method']);
+    expect(problems({ character: 'centipede', method: 'annealing' }).map((p) => p.field)).toEqual(['character', 'method']);
   });
 
   it('starts from the selected character only when there is one of the chosen type', () => {

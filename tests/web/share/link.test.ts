@@ -14,7 +14,17 @@ import {
   type GaitNormalizer,
   type GaitProblem,
 } from '../../../web/src/share/gait-file';
-import { crc32, decodeGaitHash, encodeGaitHash, fromBase64Url, hasGait, MAX_LINK_CHARS, toBase64Url } from '../../../web/src/share/link';
+import {
+  crc32,
+  decodeCreatureHash,
+  decodeGaitHash,
+  encodeGaitHash,
+  fromBase64Url,
+  hasCreature,
+  hasGait,
+  MAX_LINK_CHARS,
+  toBase64Url,
+} from '../../../web/src/share/link';
 import { schema } from '../fixtures/schema';
 
 /** The module's part, stood in for: the text as JSON, unchanged. */
@@ -245,6 +255,34 @@ describe('gait links', () => {
       for (let k = 0; k < length; k++) text += alphabet[Math.floor(next() * alphabet.length)];
       await problemOf(text);
     }
+  });
+});
+
+describe('creature links', () => {
+  const insect = readFileSync(new URL('../../../public/creatures/insect.json', import.meta.url), 'utf8');
+  const gait = presetGait(schema, 'hexapod');
+
+  it('carry a creature file beside its gait, each read back as it was', async () => {
+    const hash = await encodeGaitHash(gait, insect);
+    expect(hash).toMatch(/^#creature=1\.\d+\.[A-Za-z0-9_-]+&gait=1\.\d+\.[A-Za-z0-9_-]+$/);
+    expect(hasCreature(hash)).toBe(true);
+    expect(hasGait(hash)).toBe(true);
+    expect(JSON.parse(await decodeCreatureHash(hash))).toEqual(JSON.parse(insect));
+    expect((await decodeGaitHash(hash, passThrough)).params).toEqual(gait.params);
+    // A gait alone carries no creature.
+    expect(hasCreature(await encodeGaitHash(gait))).toBe(false);
+  });
+
+  it('refuse a damaged or truncated creature, naming it', async () => {
+    const hash = await encodeGaitHash(gait, insect);
+    const creature = /creature=([^&]*)/.exec(hash)![1];
+    const [version, chars, data] = creature.split('.');
+    const damaged = hash.replace(creature, `${version}.${chars}.${data.slice(0, 10)}${data[10] === 'A' ? 'B' : 'A'}${data.slice(11)}`);
+    await expect(decodeCreatureHash(damaged)).rejects.toThrow(/the link data is damaged|not a JSON creature/);
+    const cut = hash.replace(creature, `${version}.${chars}.${data.slice(0, 20)}`);
+    await expect(decodeCreatureHash(cut)).rejects.toThrow(`the link is truncated: it has 20 of its ${chars} characters of data`);
+    await expect(decodeCreatureHash('#creature=&gait=1.2.AA')).rejects.toThrow('the link is truncated: it names a creature but carries none');
+    await expect(decodeCreatureHash('#creature=2.4.AAAA')).rejects.toThrow('the link is of format version 2; this page reads version 1');
   });
 });
 

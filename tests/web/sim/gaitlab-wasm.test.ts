@@ -72,7 +72,13 @@ describe('the binding of c_api.h', () => {
       full: enumerator('GL_ERR_FULL'),
     });
     expect(Object.values(ERR).every((code) => code < 0)).toBe(true);
-    expect(Kind).toEqual({ biped: enumerator('GL_KIND_BIPED'), quadruped: enumerator('GL_KIND_QUADRUPED'), box: enumerator('GL_KIND_BOX') });
+    expect(Kind).toEqual({
+      biped: enumerator('GL_KIND_BIPED'),
+      quadruped: enumerator('GL_KIND_QUADRUPED'),
+      hexapod: enumerator('GL_KIND_HEXAPOD'),
+      octopod: enumerator('GL_KIND_OCTOPOD'),
+      box: enumerator('GL_KIND_BOX'),
+    });
     expect(METHOD).toEqual({ greedy: enumerator('GL_METHOD_GREEDY'), cmaes: enumerator('GL_METHOD_CMAES') });
     expect(LEGS).toEqual({ mixed: enumerator('GL_LEGS_MIXED'), 2: enumerator('GL_LEGS_BIPED'), 4: enumerator('GL_LEGS_QUADRUPED') });
     expect(MODE).toEqual({ serial: enumerator('GL_MODE_SERIAL'), controller: enumerator('GL_MODE_CONTROLLER'), full: enumerator('GL_MODE_FULL') });

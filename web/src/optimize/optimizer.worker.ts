@@ -40,7 +40,7 @@ async function run(command: OptimizerCommand): Promise<void> {
   let search: Search;
   try {
     search = new Search(m, { kind: Kind[o.character], method: METHOD[o.method], candidates: o.candidates, seed: o.seed, threads: o.threads },
-      command.startJson, { ...o.settings, speeds: o.speeds });
+      command.startJson, { ...o.settings, speeds: o.speeds }, command.creature);
   } catch (error) {
     throw new Error(`the search was refused: ${error instanceof Error ? error.message : String(error)}`);
   }

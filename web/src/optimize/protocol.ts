@@ -9,6 +9,8 @@ export type OptimizerCommand = {
   options: OptimizeOptions;
   /** The gait file to start from (the selected character's), or null for the preset. */
   startJson: string | null;
+  /** A creature file's text whose body the search learns for (the designer's), or null. */
+  creature: string | null;
 };
 
 /** One generation done (gl_opt_step returned). */

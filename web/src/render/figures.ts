@@ -58,14 +58,16 @@ const QUADRUPED: Part[] = [
   { body: 5, position: [0, 0.05, -0.11], size: [0.04, 0.28, 0.04], colour: FUR, pitch: -2.2, hang: 0.14 },
 ];
 
-export const PARTS: Record<CharacterType, Part[]> = { biped: BIPED, quadruped: QUADRUPED };
+/** The kinds drawn with ornaments: the shipped biped and quadruped (creatures are drawn as they are simulated). */
+type Dressed = Extract<CharacterType, 'biped' | 'quadruped'>;
+export const PARTS: Record<Dressed, Part[]> = { biped: BIPED, quadruped: QUADRUPED };
 /** Feet (body indices, morphology order) and their half heights: where contact shading goes. */
-const FEET: Record<CharacterType, { bodies: number[]; half: number; blob: number }> = {
+const FEET: Record<Dressed, { bodies: number[]; half: number; blob: number }> = {
   biped: { bodies: [3, 6], half: 0.03, blob: 0.34 },
   quadruped: { bodies: [8, 11, 14, 17], half: 0.02, blob: 0.2 },
 };
 /** Bodies per character (native/src/body/morphology.cpp): how a character's type is known from the buffer. */
-const BODIES: Record<number, CharacterType> = { 7: 'biped', 18: 'quadruped' };
+const BODIES: Record<number, Dressed> = { 7: 'biped', 18: 'quadruped' };
 
 /** A rounded unit box: segments and ornaments alike read as rounded limbs, not crates. */
 export function roundedUnitBox(): THREE.BufferGeometry {

@@ -11,7 +11,7 @@
 // the offsets of STRUCTS, which mirror c_api.h's static_asserts (tests/web/sim/gaitlab-wasm.test.ts
 // compares them), after the library's own gl_*_defaults filled them.
 import type { TerrainGrid, TerrainKind } from './terrain-grid';
-import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
+import { KIND_NUMBERS } from '../gait/character';
 
 /** The Emscripten Module with every function of the C ABI. Pointers are byte offsets (numbers). */
 export interface GaitlabModule {
@@ -38,6 +38,7 @@ export interface GaitlabModule {
   _gl_sim_add_characters(sim: number, kind: number, count: number): number;
   _gl_sim_add_apart(sim: number, kind: number): number;
   _gl_sim_spawn_creature(sim: number, creatureJson: number, x: number, z: number, heading: number): number;
+  _gl_sim_add_apart_creature(sim: number, creatureJson: number): number;
   _gl_cruise_speed(kind: number): number;
   _gl_top_speed(kind: number): number;
   _gl_sim_demo_scene(sim: number, characters: number): number;
@@ -78,6 +79,7 @@ export interface GaitlabModule {
   // Optimisation.
   _gl_opt_defaults(settings: number): void;
   _gl_opt_create(settings: number, startJson: number, objectiveJson: number): number;
+  _gl_opt_create_creature(settings: number, startJson: number, objectiveJson: number, creatureJson: number): number;
   _gl_opt_destroy(opt: number): void;
   _gl_opt_settings_json(): number;
   _gl_opt_step(opt: number): number;
@@ -111,11 +113,8 @@ export const CROWD_SHARDS = 16;
 /** GL_ERR_* of c_api.h: what a refused int-returning call returns. */
 export const ERR = { argument: -1, kind: -2, noCharacter: -3, invalidParams: -4, full: -5 } as const;
 
-/** Kinds for gl_sim_spawn (GL_KIND_*): the character types in their order (gait/character.ts), then the box. */
-export const Kind = {
-  ...(Object.fromEntries(CHARACTER_TYPES.map((t, i) => [t, i])) as Record<CharacterType, number>),
-  box: CHARACTER_TYPES.length,
-} as const;
+/** Kinds for gl_sim_spawn (GL_KIND_*): the character types' numbers (gait/character.ts), and the box's. */
+export const Kind = { ...KIND_NUMBERS, box: 2 } as const;
 /** gl_sim_add_characters' kind for bipeds and quadrupeds in turn (GL_LAYOUT_ALTERNATING). */
 export const ALTERNATING = 3;
 
@@ -514,6 +513,12 @@ export class Simulation {
       this.check('gl_sim_spawn_creature', this.module._gl_sim_spawn_creature(this.sim, pointer, x, z, heading)));
   }
 
+  /** A creature (spawnCreature) at the scene layout's place apart (gl_sim_add_apart_creature). */
+  addApartCreature(json: string): number {
+    return withString(this.module, json, (pointer) =>
+      this.check('gl_sim_add_apart_creature', this.module._gl_sim_add_apart_creature(this.sim, pointer)));
+  }
+
   setParams(id: number, kind: number, json: string): void {
     withString(this.module, json, (pointer) =>
       this.check('gl_sim_set_params', this.module._gl_sim_set_params(this.sim, id, kind, pointer)));
@@ -583,13 +588,18 @@ export class Search {
   readonly module: GaitlabModule;
   private handle: number;
 
-  /** `start`: a gait file's JSON, or null for the preset; `objective`: objective settings, or null. */
-  constructor(module: GaitlabModule, settings: SearchSettings, start: string | null, objective: Record<string, unknown> | null) {
+  /**
+   * `start`: a gait file's JSON, or null for the preset; `objective`: objective settings, or null;
+   * `creature`: a creature file's text whose body every episode walks (gl_opt_create_creature), or
+   * null for the kind's shipped body.
+   */
+  constructor(module: GaitlabModule, settings: SearchSettings, start: string | null, objective: Record<string, unknown> | null, creature: string | null = null) {
     this.module = module;
     this.handle = withStruct(module, STRUCTS.gl_opt_settings, (p) => module._gl_opt_defaults(p), settings, (s) =>
       withString(module, start, (startPointer) =>
         withString(module, objective === null ? null : JSON.stringify(objective), (objectivePointer) =>
-          checkPointer(module, 'gl_opt_create', module._gl_opt_create(s, startPointer, objectivePointer)))));
+          withString(module, creature, (creaturePointer) =>
+            checkPointer(module, 'gl_opt_create_creature', module._gl_opt_create_creature(s, startPointer, objectivePointer, creaturePointer))))));
   }
 
   private get opt(): number {

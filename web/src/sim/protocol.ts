@@ -70,10 +70,11 @@ export type SceneCommand =
   | { type: 'add'; kind: CharacterType; count: number }
   /**
    * A character whose body is a creature file's text (public/creatures/*.json) standing at
-   * (x, z), facing `heading`, walking at `speed` m/s (gl_sim_spawn_creature). A refused file is
-   * said in a `commandError` naming the field.
+   * (x, z), facing `heading`, walking at `speed` m/s (gl_sim_spawn_creature), with the gait file
+   * `gait` of its kind if given (else the gait its body walks when spawned). A refused file or
+   * gait is said in a `commandError` naming the field; a refused gait removes the creature again.
    */
-  | { type: 'spawnCreature'; json: string; x: number; z: number; heading: number; speed: number }
+  | { type: 'spawnCreature'; json: string; x: number; z: number; heading: number; speed: number; gait?: string }
   /** Characters down for this long are reset automatically; 0 = never. */
   | { type: 'autoReset'; seconds: number }
   /**
@@ -92,9 +93,10 @@ export type SceneCommand =
    * own, apart from the crowd, that walks a search's best gait so far. Each of these replaces
    * the previous learner by a fresh one at the learner's place, facing +z, with gait `json` and
    * goal (`speed`, `turn`); every `loopSeconds` of simulated time (0: never) it starts over
-   * there, so it keeps showing the episode the objective scores.
+   * there, so it keeps showing the episode the objective scores. With `creature` (a creature
+   * file's text, of `character`'s kind) it has that body rather than the kind's shipped one.
    */
-  | { type: 'learner'; character: CharacterType; json: string; speed: number; turn: number; loopSeconds: number }
+  | { type: 'learner'; character: CharacterType; json: string; speed: number; turn: number; loopSeconds: number; creature?: string }
   /** Removes the learner, if there is one. */
   | { type: 'removeLearner' }
   /** The ground: flat, slope or bumps. Every character is re-placed standing on the new ground. */
@@ -115,10 +117,7 @@ export interface CharacterStatus {
   goal: { speed: number; turn: number };
   /** Gait phase in [0, 1). */
   phase: number;
-  /**
-   * Its number of legs: 2 or 4, or a creature's (its `type` is then the character whose leg
-   * frames it has, and one of more than four legs takes no gait file).
-   */
+  /** Its number of legs: 2, 4, 6 or 8 (its `type` is the kind its leg frames make). */
   legs: number;
   /** Wandering chooses its turn rate (else it keeps the goal it was given). */
   wanders?: boolean;
@@ -241,14 +240,6 @@ export { MAX_THREADS } from './gaitlab-wasm';
 export function defaultThreads(hardwareConcurrency: number | undefined): number {
   const cores = Number.isFinite(hardwareConcurrency) ? Math.floor(hardwareConcurrency as number) : 1;
   return Math.max(1, Math.min(cores, MAX_THREADS));
-}
-
-/**
- * Whether a character walks with a gait file (its gait can be read, edited and shared): the
- * biped's and the quadruped's legs; a creature of more walks the gait derived from its body.
- */
-export function takesGaitFiles(c: CharacterStatus): boolean {
-  return c.legs <= 4;
 }
 
 /** Most characters the page's `?characters=` may ask for at the start. */

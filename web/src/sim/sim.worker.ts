@@ -32,7 +32,6 @@ import { CHARACTER_TYPES, typeOfKind } from '../gait/character';
 import {
   errorMessage,
   MAX_CHARACTERS,
-  takesGaitFiles,
   type CharacterStatus,
   type CharacterType,
   type SceneCommand,
@@ -150,10 +149,9 @@ class WorkerScene {
   constructor(private readonly module: GaitlabModule, private readonly options: SimOptions) {
     this.paused = options.paused === true;
     this.terrain = options.terrain ?? 'flat';
-    this.lastGoals = {
-      biped: { speed: cruiseSpeed(module, Kind.biped), turn: 0 },
-      quadruped: { speed: cruiseSpeed(module, Kind.quadruped), turn: 0 },
-    };
+    this.lastGoals = Object.fromEntries(
+      CHARACTER_TYPES.map((type) => [type, { speed: cruiseSpeed(module, Kind[type]), turn: 0 }]),
+    ) as Record<CharacterType, { speed: number; turn: number }>;
   }
 
   /** Builds the first scene and starts the loop and the statistics heartbeat. */
@@ -209,7 +207,7 @@ class WorkerScene {
       ...(terrain !== 'flat' ? [{ type: 'setTerrain' as const, terrain }] : []),
       // One goal for all, once one was given to all; until then each type's start goal, which
       // addCharacters gives every character it spawns.
-      ...(sameGoal(lastGoals.biped, lastGoals.quadruped) ? [{ type: 'setGoal' as const, id: 'all' as const, ...lastGoals.biped }] : []),
+      ...(CHARACTER_TYPES.every((t) => sameGoal(lastGoals.biped, lastGoals[t])) ? [{ type: 'setGoal' as const, id: 'all' as const, ...lastGoals.biped }] : []),
       { type: 'autoReset', seconds: this.autoResetSeconds },
       ...(this.wandering ? [{ type: 'wander' as const, on: true }] : []),
       ...Object.entries(this.typeGaits).map(([character, json]) => ({ type: 'setParams' as const, id: 'all' as const, character: character as CharacterType, json: json! })),
@@ -227,10 +225,9 @@ class WorkerScene {
       version: gaitlabVersion(module),
       schema: schemaJson(module),
       optimizerSchema: optimizerSettingsJson(module),
-      speedRanges: {
-        biped: { min: 0, max: topSpeed(module, Kind.biped) },
-        quadruped: { min: 0, max: topSpeed(module, Kind.quadruped) },
-      },
+      speedRanges: Object.fromEntries(
+        CHARACTER_TYPES.map((type) => [type, { min: 0, max: topSpeed(module, Kind[type]) }]),
+      ) as Record<CharacterType, { min: number; max: number }>,
     });
     this.postTerrain();
     if (!this.paused) this.clock.start(this.now());
@@ -261,7 +258,8 @@ class WorkerScene {
     const info = sim.characterInfo(); // the added characters are the last ones
     for (let o = info.length - added * INFO.fields; o < info.length; o += INFO.fields) {
       const id = info[o + INFO.id];
-      const kind: CharacterType = info[o + INFO.kind] === Kind.biped ? 'biped' : 'quadruped';
+      const kind = typeOfKind(info[o + INFO.kind]);
+      if (!kind) continue;
       sim.setGoal(id, this.lastGoals[kind].speed, this.lastGoals[kind].turn);
       const gait = this.typeGaits[kind];
       if (gait) {
@@ -407,6 +405,7 @@ class WorkerScene {
           return;
         }
         const id = sim.spawnCreature(command.json, command.x, command.z, command.heading);
+        if (command.gait !== undefined && !this.giveGait(sim, id, command.gait, 'the creature was not added')) return;
         sim.setGoal(id, command.speed, 0);
         return;
       }
@@ -438,7 +437,7 @@ class WorkerScene {
         if (!error && command.id === 'all') {
           // Characters added later walk with the type's gait as edited: the first of the type's,
           // as the editors show it.
-          const first = this.characterStatus().find((c) => c.type === command.character && takesGaitFiles(c));
+          const first = this.characterStatus().find((c) => c.type === command.character);
           if (first) this.typeGaits[command.character] = sim.getParams(first.id);
         }
         if (command.request !== undefined) post({ type: 'patched', request: command.request, accepted: error ? null : command.patch, error });
@@ -464,6 +463,26 @@ class WorkerScene {
     }
   }
 
+  /**
+   * Gives character `id` the gait file `json` (of its own kind, which the module checks); a
+   * refused gait removes the character and is said as "`what`: FIELD: WHAT". Returns whether it
+   * was given.
+   */
+  private giveGait(sim: Simulation, id: number, json: string, what: string): boolean {
+    const info = sim.characterInfo();
+    let kind = -1;
+    for (let o = 0; o < info.length; o += INFO.fields) if (info[o + INFO.id] === id) kind = info[o + INFO.kind];
+    try {
+      sim.setParams(id, kind, json);
+      return true;
+    } catch (error) {
+      if (!(error instanceof GaitlabError)) throw error;
+      sim.removeCharacter(id);
+      post({ type: 'commandError', message: `${what}: ${error.detail}` });
+      return false;
+    }
+  }
+
   /** The learner: spawned apart from the crowd with the command's gait and goal. */
   private startLearner(sim: Simulation, command: Extract<SceneCommand, { type: 'learner' }>): void {
     if (this.learner) sim.removeCharacter(this.learner.id);
@@ -471,20 +490,13 @@ class WorkerScene {
     let id: number;
     try {
       // The scene layout's place apart, left of the crowd's grid, where it can be watched alone.
-      id = sim.addApart(Kind[command.character]);
-    } catch (error) {
-      if (!(error instanceof GaitlabError && error.code === ERR.full)) throw error;
-      post({ type: 'commandError', message: 'the learner was not added: the scene is full' });
-      return;
-    }
-    try {
-      sim.setParams(id, Kind[command.character], command.json);
+      id = command.creature !== undefined ? sim.addApartCreature(command.creature) : sim.addApart(Kind[command.character]);
     } catch (error) {
       if (!(error instanceof GaitlabError)) throw error;
-      sim.removeCharacter(id);
-      post({ type: 'commandError', message: `the learner was not added: ${error.detail}` });
+      post({ type: 'commandError', message: `the learner was not added: ${error.code === ERR.full ? 'the scene is full' : error.detail}` });
       return;
     }
+    if (!this.giveGait(sim, id, command.json, 'the learner was not added')) return;
     sim.setGoal(id, command.speed, command.turn);
     this.learner = { id, command, since: sim.time };
     this.learnerChanged = true;

@@ -15,7 +15,19 @@ import { TERRAIN_KINDS, type TerrainKind } from '../sim/terrain-grid';
 export const WALKING_SPEEDS: Record<CharacterType, { min: number; max: number }> = {
   biped: { min: 0.5, max: 1.0 },
   quadruped: { min: 0.4, max: 0.8 },
+  hexapod: { min: 0.4, max: 0.8 },
+  octopod: { min: 0.4, max: 0.8 },
 };
+/** What the steering's speed sliders call each kind. */
+const SPEED_NAMES: Record<CharacterType, string> = {
+  biped: 'biped speed (m/s)',
+  quadruped: 'dog speed (m/s)',
+  hexapod: 'six-legged speed (m/s)',
+  octopod: 'eight-legged speed (m/s)',
+};
+/** The panel's value each kind's speed slider edits. */
+export type SpeedValue = `${CharacterType}Speed`;
+export const speedValue = (type: CharacterType): SpeedValue => `${type}Speed`;
 /** The turn rates both presets are measured to follow (README, Walking: ±0.3 rad/s), in °/s. */
 export const MAX_TURN_DEGREES = 17;
 
@@ -52,6 +64,8 @@ export class ControlPanel {
     autoResetSeconds: 0,
     bipedSpeed: 1.0,
     quadrupedSpeed: 0.4,
+    hexapodSpeed: 0.4,
+    octopodSpeed: 0.4,
     turnDegrees: 0,
     /** What the steering acts on, as the panel says it. */
     steering: 'everyone',
@@ -113,18 +127,15 @@ export class ControlPanel {
     const steer = this.gui.addFolder('Steering');
     this.steerLabel = steer.add(v, 'steering').name('steers').disable().listen();
     this.steerLabel.domElement.classList.add('steer-target');
-    const send = () =>
-      actions.steer(this.target, { speed: { biped: v.bipedSpeed, quadruped: v.quadrupedSpeed }, turn: (v.turnDegrees * Math.PI) / 180 });
-    this.speedControls = {
-      biped: steer.add(v, 'bipedSpeed', WALKING_SPEEDS.biped.min, WALKING_SPEEDS.biped.max, 0.05).name('biped speed (m/s)').onChange(send).listen(),
-      quadruped: steer
-        .add(v, 'quadrupedSpeed', WALKING_SPEEDS.quadruped.min, WALKING_SPEEDS.quadruped.max, 0.05)
-        .name('dog speed (m/s)')
-        .onChange(send)
-        .listen(),
-    };
-    guardNumberController(this.speedControls.biped, () => this.ranges.biped.min, () => this.ranges.biped.max, 'biped speed');
-    guardNumberController(this.speedControls.quadruped, () => this.ranges.quadruped.min, () => this.ranges.quadruped.max, 'dog speed');
+    const send = () => actions.steer(this.target, { speed: this.speeds(), turn: (v.turnDegrees * Math.PI) / 180 });
+    this.speedControls = Object.fromEntries(
+      CHARACTER_TYPES.map((type) => {
+        const { min, max } = WALKING_SPEEDS[type];
+        const control = steer.add(v, speedValue(type), min, max, 0.05).name(SPEED_NAMES[type]).onChange(send).listen();
+        guardNumberController(control, () => this.ranges[type].min, () => this.ranges[type].max, SPEED_NAMES[type].replace(' (m/s)', ''));
+        return [type, control];
+      }),
+    ) as Record<CharacterType, Controller>;
     this.setSpeedRanges(this.ranges);
     this.turnControl = steer.add(v, 'turnDegrees', -MAX_TURN_DEGREES, MAX_TURN_DEGREES, 1).name('turn (°/s)').onChange(send).listen();
     guardNumberController(this.turnControl, -MAX_TURN_DEGREES, MAX_TURN_DEGREES, 'turn');
@@ -152,6 +163,11 @@ export class ControlPanel {
     this.setSelection(null);
   }
 
+
+  /** Each kind's goal speed, as its slider has it. */
+  speeds(): Record<CharacterType, number> {
+    return Object.fromEntries(CHARACTER_TYPES.map((type) => [type, this.values[speedValue(type)]])) as Record<CharacterType, number>;
+  }
 
   /** The goal speeds a type's slider spans. */
   speedRange(type: CharacterType): { min: number; max: number } {
@@ -209,7 +225,7 @@ export class ControlPanel {
       v.wander = this.crowdWanders;
     } else {
       this.target = { id: selected.id, type: selected.type };
-      v[selected.type === 'biped' ? 'bipedSpeed' : 'quadrupedSpeed'] = selected.goal.speed;
+      v[speedValue(selected.type)] = selected.goal.speed;
       v.turnDegrees = Math.round((selected.goal.turn * 180) / Math.PI);
       v.wander = selected.wanders ?? false;
     }

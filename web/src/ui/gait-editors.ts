@@ -16,7 +16,7 @@ import type { Overlay } from './overlay';
 import { CHARACTER_TYPES, type CharacterType } from '../gait/character';
 import { GaitModel, type GaitTarget } from '../gait/gait-model';
 import { GaitError, speedKeysOf, type GaitFile, type ParamPatch, type ParamSchema, type ParamValue, type SchemaEntry, type SchemaLeg } from '../share/gait-file';
-import { takesGaitFiles, type CharacterStatus } from '../sim/protocol';
+import type { CharacterStatus } from '../sim/protocol';
 import type { SimClient } from '../sim/sim-client';
 
 /**
@@ -184,7 +184,7 @@ export class GaitEditors {
   /** The statistics report: the phase marker follows the selected character (or the first of the type). */
   tick(selected: CharacterStatus | null, all: CharacterStatus[] = []): void {
     this.characters = all;
-    const source = selected ?? all.find((c) => c.type === this.model.target.character && takesGaitFiles(c)) ?? null;
+    const source = selected ?? all.find((c) => c.type === this.model.target.character) ?? null;
     const period = this.model.gait?.params.period;
     this.phaseSource = source ? { phase: source.phase, at: performance.now(), period: typeof period === 'number' ? period : 1 } : null;
   }
@@ -221,7 +221,7 @@ export class GaitEditors {
     try {
       // Every character of a type walks with the same gait unless one was edited alone: start
       // from the first one's (the preset only when there is none of that type).
-      const first = this.characters.find((c) => c.type === target.character && takesGaitFiles(c));
+      const first = this.characters.find((c) => c.type === target.character);
       const id = target.id === 'all' ? first?.id : target.id;
       const gait = id === undefined ? await this.presetOf(target.character) : await this.gaitOf(id);
       if (token !== this.loadToken) return;
@@ -476,7 +476,8 @@ export class GaitEditors {
    * them); a bad link is refused with the module's message naming the field, and the presets run.
    */
   private async openLink(target: GaitTarget): Promise<void> {
-    if (!this.transfer.linkInPage()) return;
+    // A link with a creature's body carries that creature's gait: the page spawns it (main.ts).
+    if (!this.transfer.linkInPage() || this.transfer.creatureInPage()) return;
     try {
       const gait = await this.transfer.readLink();
       Object.assign(target, { id: 'all', character: gait.character });

@@ -6,7 +6,7 @@
 // gl_gait_normalize, and comes back normalised (current schema version, every parameter) or
 // refused with the module's "FIELD: WHAT", which the page shows as it is.
 import { GaitError, type GaitFile } from '../share/gait-file';
-import { decodeGaitHash, encodeGaitHash, hasGait } from '../share/link';
+import { decodeCreatureHash, decodeGaitHash, encodeGaitHash, hasCreature, hasGait } from '../share/link';
 import { MAX_JSON_BYTES } from '../sim/limits';
 
 /** The sim worker's normaliser: the module's answer for a gait file's text. */
@@ -20,17 +20,17 @@ export class GaitTransfer {
     return JSON.parse(await this.normalizeJson(json)) as GaitFile;
   }
 
-  /** A link to this page that carries `gait`. */
-  async shareUrl(gait: GaitFile): Promise<string> {
-    return `${location.origin}${location.pathname}${location.search}${await encodeGaitHash(gait)}`;
+  /** A link to this page that carries `gait`, and the body of `creature` (a creature file's text) if given. */
+  async shareUrl(gait: GaitFile, creature?: string): Promise<string> {
+    return `${location.origin}${location.pathname}${location.search}${await encodeGaitHash(gait, creature)}`;
   }
 
   /**
    * Makes `gait`'s link and copies it to the clipboard if the browser lets the page (an insecure
    * origin or a headless browser does not; the link is returned either way, to show).
    */
-  async share(gait: GaitFile): Promise<{ url: string; copied: boolean; message: string }> {
-    const url = await this.shareUrl(gait);
+  async share(gait: GaitFile, creature?: string): Promise<{ url: string; copied: boolean; message: string }> {
+    const url = await this.shareUrl(gait, creature);
     let copied = false;
     try {
       await navigator.clipboard.writeText(url);
@@ -44,6 +44,16 @@ export class GaitTransfer {
   /** Whether the page's address carries a gait. */
   linkInPage(): boolean {
     return hasGait(location.hash);
+  }
+
+  /** Whether the page's address carries a creature's body (its gait then is that creature's). */
+  creatureInPage(): boolean {
+    return hasCreature(location.hash);
+  }
+
+  /** The creature file's text the page's address carries; throws a GaitError for a bad link. */
+  readCreatureLink(): Promise<string> {
+    return decodeCreatureHash(location.hash);
   }
 
   /** The gait the page's address carries; throws a GaitError (the module's refusal as problem 'refused'). */

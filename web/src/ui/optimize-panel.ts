@@ -55,6 +55,15 @@ export interface OptimizeStatus {
   result: GaitFile | null;
   /** What the panel says (a refused form, an error, what was applied), or null. */
   message: string | null;
+  /** The name of the body the search learns for (a designed creature), or null for the kind's shipped body. */
+  body: string | null;
+}
+
+/** A body to learn for: a creature file's text, its name, and the kind its leg frames make. */
+export interface LearnerBody {
+  json: string;
+  name: string;
+  character: CharacterType;
 }
 
 export interface OptimizePanelHost {
@@ -66,8 +75,8 @@ export interface OptimizePanelHost {
   selected(): CharacterStatus | null;
   /** Character `id`'s gait as a gait file's JSON. */
   gaitJson(id: number): Promise<string>;
-  /** Puts (or replaces) the learner walking `gait`. */
-  showLearner(gait: GaitFile, goal: { speed: number; turn: number }, loopSeconds: number): void;
+  /** Puts (or replaces) the learner walking `gait`, with `body` if given (else its kind's shipped body). */
+  showLearner(gait: GaitFile, goal: { speed: number; turn: number }, loopSeconds: number, body: LearnerBody | null): void;
   /** Gives `gait` to the selected character or to every character of its type; says to whom. */
   apply(gait: GaitFile, target: 'selected' | 'all'): Promise<string>;
   /** Called when the panel opens or closes (the view keeps what it looks at clear of it). */
@@ -114,7 +123,12 @@ export class OptimizePanel {
   private readonly bestLine: HTMLElement;
   private readonly learnerLine: HTMLElement;
   private readonly chartHolder: HTMLElement;
+  private readonly bodyLine: HTMLElement;
   private plot: uPlot | null = null;
+  /** The body the search learns for (useBody), or null for the kind's shipped body. */
+  private body: LearnerBody | null = null;
+  /** The body the current (or last) search learnt for: the result's, which its link carries. */
+  private resultBody: LearnerBody | null = null;
 
   private state: OptimizeState = 'idle';
   private options: OptimizeOptions | null = null;
@@ -148,6 +162,10 @@ export class OptimizePanel {
     );
     for (const [name, f] of Object.entries(SEARCH_FIELDS)) grid.append(this.field(name, f.label, form[name], f.description));
     grid.append(this.field('speeds', 'goal speeds (m/s)', form.speeds, `${host.optimizerSchema.speeds.description}; comma-separated, ${host.optimizerSchema.speeds.min} to ${host.optimizerSchema.speeds.max}`));
+    const shippedBody = el('button', { type: 'button', textContent: 'use the shipped body' });
+    shippedBody.addEventListener('click', () => this.useBody(null));
+    this.bodyLine = el('div', { className: 'opt-body', hidden: true }, el('span', {}), shippedBody);
+    this.bodyLine.dataset.testid = 'optimize-body';
     const more = el('div', { className: 'opt-grid' });
     for (const s of host.optimizerSchema.settings) {
       const label = LABELS[s.name] ?? `${s.name}${s.unit && s.unit !== '1' ? ` (${s.unit})` : ''}`;
@@ -184,6 +202,7 @@ export class OptimizePanel {
     this.updateTargets();
 
     this.element.append(
+      this.bodyLine,
       grid,
       advanced,
       el('div', { className: 'opt-buttons' }, this.startButton, this.stopButton, follow),
@@ -239,6 +258,30 @@ export class OptimizePanel {
 
   private setDisabled(disabled: boolean): void {
     for (const input of this.inputs.values()) input.disabled = disabled;
+    // A body's kind is its leg frames': the character is not a choice while one is set.
+    const character = this.inputs.get('character');
+    if (character && this.body) character.disabled = true;
+    for (const button of this.bodyLine.querySelectorAll('button')) button.disabled = disabled;
+  }
+
+  /**
+   * Learns for `body` (a designed creature) from now on, or with null for each kind's shipped
+   * body: the character is set to the body's kind, and the search starts, unless the form's start
+   * is the selected character, from the gait the body walks when spawned.
+   */
+  useBody(body: LearnerBody | null): void {
+    if (this.running) throw new Error('a search is running: stop it first');
+    this.body = body;
+    if (body) this.setForm({ character: body.character });
+    this.bodyLine.hidden = body === null;
+    this.bodyLine.querySelector('span')!.textContent = body ? `Learning for ${body.name} (${body.character}, its own body)` : '';
+    this.setDisabled(false);
+  }
+
+  /** "Teach it to walk": a search for `body`, shown as any other (the test hook awaits it). */
+  teach(body: LearnerBody, values?: OptimizeForm): Promise<OptimizeStatus> {
+    this.useBody(body);
+    return this.start(values);
   }
 
   private say(text: string | null, kind: 'info' | 'problem' = 'info'): void {
@@ -293,6 +336,7 @@ export class OptimizePanel {
     }
 
     this.options = options;
+    this.resultBody = this.body;
     this.history = [];
     this.result = null;
     this.loadSeconds = null;
@@ -315,7 +359,7 @@ export class OptimizePanel {
       event.preventDefault();
       if (this.worker === worker) this.finish('error', `the optimizer worker failed: ${event.message || 'see the browser console'}`);
     };
-    const command: OptimizerCommand = { type: 'start', wasmUrl: this.host.wasmUrl, options, startJson };
+    const command: OptimizerCommand = { type: 'start', wasmUrl: this.host.wasmUrl, options, startJson, creature: this.body?.json ?? null };
     worker.postMessage(command);
     return done;
   }
@@ -365,10 +409,11 @@ export class OptimizePanel {
         candidates: o.candidates,
         objective_settings: { ...o.settings, speeds: o.speeds },
         start: this.startedFrom,
+        ...(this.body ? { creature: this.body.name } : {}),
         found_in_generation: report.generation,
       };
       this.result = gait;
-      this.host.showLearner(gait, { speed: o.speeds[0], turn: o.settings.turnRate ?? 0 }, learnerLoop(o));
+      this.host.showLearner(gait, { speed: o.speeds[0], turn: o.settings.turnRate ?? 0 }, learnerLoop(o), this.body);
     }
     if (this.result?.meta) {
       Object.assign(this.result.meta, { generations: report.generation, evaluations: report.evaluations, interrupted: false, date: new Date().toISOString() });
@@ -409,6 +454,7 @@ export class OptimizePanel {
       chartPoints: this.plot ? this.plot.data[0].length : 0,
       result: this.result ? structuredClone(this.result) : null,
       message: this.message,
+      body: this.body?.name ?? null,
     };
   }
 
@@ -459,8 +505,9 @@ export class OptimizePanel {
         // Whole generations on the x axis.
         axes: [
           { label: 'generation', size: 34, labelSize: 14, incrs: [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10_000, 100_000] },
-          // As many decimals as the ticks need to differ, and the width the labels take.
-          { values: (_u, splits) => tickLabels(splits), size: (_u, values) => 14 + 7 * Math.max(3, ...(values ?? []).map((v) => v.length)) },
+          // As many decimals as the ticks need to differ, and the width the labels take (8 px a
+          // character of the axis font, and the ticks beside them: 7 cut the first digit off).
+          { values: (_u, splits) => tickLabels(splits), size: (_u, values) => 18 + 8 * Math.max(3, ...(values ?? []).map((v) => v.length)) },
         ],
         series: [{ label: 'generation' }, { label: 'best objective', stroke: LEARNER_COLOUR, width: 2, points: { show: true, size: 5, fill: LEARNER_COLOUR } }],
       },
@@ -497,15 +544,18 @@ export class OptimizePanel {
     }
   }
 
-  /** A link to this page carrying the result (the share-link codec, web/src/share/link.ts). */
+  /**
+   * A link to this page carrying the result (the share-link codec, web/src/share/link.ts), and the
+   * body it was learnt for, if it was.
+   */
   async shareUrl(): Promise<string> {
     if (!this.result) throw new Error('there is no result to share yet');
-    return this.host.transfer.shareUrl(this.result);
+    return this.host.transfer.shareUrl(this.result, this.resultBody?.json);
   }
 
   private async share(): Promise<void> {
     if (!this.result) throw new Error('there is no result to share yet');
-    const { url, message } = await this.host.transfer.share(this.result);
+    const { url, message } = await this.host.transfer.share(this.result, this.resultBody?.json);
     this.linkField.value = url;
     this.say(message);
   }

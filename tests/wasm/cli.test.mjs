@@ -60,7 +60,7 @@ test('--version works natively and as WASM', () => {
 });
 
 for (const [args, message] of [
-  [['walk', '--character', 'horse'], /--character: 'horse' is not biped or quadruped/],
+  [['walk', '--character', 'horse'], /--character: 'horse' is not biped, quadruped, hexapod or octopod/],
   [['walk', '--speed', 'fast'], /--speed: 'fast' is not a number/],
   [['walk', '--seconds', 'nan'], /--seconds: 'nan' is not a number/],
   [['walk', '--speed', '99'], /--speed: 99 is outside/],

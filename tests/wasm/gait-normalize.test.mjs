@@ -80,7 +80,7 @@ describe('gl_gait_normalize: the gait in a share link or an imported file', () =
   it('refuses JSON that is not a gait, naming the field', () => {
     const cases = [
       [edited((g) => (g.format = 'something-else')), /^format: expected "gaitlab-gait"/],
-      [edited((g) => (g.character = 'octopus')), /^character: expected "biped" or "quadruped", got "octopus"/],
+      [edited((g) => (g.character = 'octopus')), /^character: expected "biped" or "quadruped" or "hexapod" or "octopod", got "octopus"/],
       [edited((g) => (g.params = [1, 2])), /^params: expected an object, got an array of 2/],
       [edited((g) => (g.params['no.such.param'] = 1)), /^no\.such\.param: unknown parameter for a biped/],
       [edited((g) => (g.params.period = '0.8')), /^period: expected a number, got a string/],

@@ -4,7 +4,7 @@
 // {speed, turn}), ...). It only forwards to the page's parts (main.ts hands them over): nothing
 // here keeps state of its own.
 import type { CreatureFile } from './creature/creature-file';
-import type { CreatureDesign } from './creature/design';
+import { randomDesign, type CreatureDesign } from './creature/design';
 import type { CharacterType } from './gait/character';
 import type { OptimizeForm } from './optimize/options';
 import type { GaitFile, ParamPatch } from './share/gait-file';
@@ -145,6 +145,8 @@ export interface DesignerHook {
   preview(): number | null;
   /** Loads a shipped creature's settings as the "start from" list does. */
   preset(name: DesignPreset): Promise<void>;
+  /** A random body within the designer's limits (creature/design.ts, randomDesign; the same seed, the same body). */
+  randomize(seed: number): void;
   /**
    * "Teach it to walk": the optimize panel searches a gait for the designed body, after writing
    * `form` into its fields as optimize() does; resolves with optimizeStatus() when it ends.
@@ -238,6 +240,7 @@ export function installTestHook(host: TestHookHost): GaitlabHook {
       error: () => host.designer().error(),
       preview: () => host.designer().preview(),
       preset: (name: DesignPreset) => host.designer().loadPreset(name),
+      randomize: (seed: number) => host.designer().set(randomDesign(seed)),
       teach: async (form?: OptimizeForm) => {
         if (form) optimizer().setForm(form);
         return (await host.designer().teach()) as OptimizeStatus;

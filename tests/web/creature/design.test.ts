@@ -12,6 +12,7 @@ import {
   designFromFile,
   LEG_SHARE_RANGE,
   MASS_PER_LEG,
+  randomDesign,
   SETTING_RANGES,
   stanceSweep,
   type CreatureDesign,
@@ -183,5 +184,23 @@ describe('the design checks', () => {
     for (const name of ['insect', 'spider', 'dragon', 'quadruped']) {
       for (let pairs = 2; pairs <= 4; pairs++) expect(checkDesign({ ...designFromFile(shipped(name)), pairs }), `${name} × ${pairs}`).toEqual([]);
     }
+  });
+});
+
+describe('random designs', () => {
+  it('are within the designer\'s limits, pass every check, differ, and repeat for a seed', () => {
+    const designs = Array.from({ length: 20 }, (_, k) => randomDesign(k + 1));
+    for (const d of designs) {
+      expect(checkDesign(d)).toEqual([]);
+      for (const [key, r] of Object.entries(SETTING_RANGES)) {
+        const value = d[key as keyof typeof SETTING_RANGES];
+        expect(value).toBeGreaterThanOrEqual(r.min);
+        expect(value).toBeLessThanOrEqual(r.max);
+      }
+    }
+    expect(new Set(designs.map((d) => JSON.stringify(d))).size).toBe(20);
+    expect(randomDesign(7)).toEqual(designs[6]);
+    // Every number of leg pairs turns up among 20.
+    expect(new Set(designs.map((d) => d.pairs)).size).toBeGreaterThan(1);
   });
 });

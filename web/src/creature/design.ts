@@ -427,6 +427,41 @@ export function designCreature(design: CreatureDesign, name?: string): DesignRes
   return { file: buildFile(design, name), problems };
 }
 
+/** A seeded generator (mulberry32): the same seed, the same bodies. */
+function mulberry32(seed: number): () => number {
+  let a = seed >>> 0;
+  return () => {
+    a = (a + 0x6d2b79f5) >>> 0;
+    let t = a;
+    t = Math.imul(t ^ (t >>> 15), t | 1);
+    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+
+/** Most draws randomDesign makes before it gives up (none of 20 seeds needs more than a few hundred). */
+const MAX_DRAWS = 100_000;
+
+/**
+ * A random body within the designer's limits: every numeric setting drawn uniformly over its
+ * slider's range (on the slider's steps), the knees at random, drawn again until the design
+ * passes every check. The same seed gives the same body. What "random bodies" means where the
+ * learning benchmark (bench/learning.mjs) reports how many of them learn to walk.
+ */
+export function randomDesign(seed: number): CreatureDesign {
+  const next = mulberry32(seed);
+  for (let draw = 0; draw < MAX_DRAWS; draw++) {
+    const design: CreatureDesign = { ...DEFAULT_DESIGN };
+    for (const [key, r] of Object.entries(SETTING_RANGES) as [NumericSetting, (typeof SETTING_RANGES)[NumericSetting]][]) {
+      const steps = Math.round((r.max - r.min) / r.step);
+      design[key] = Number((r.min + Math.floor(next() * (steps + 1)) * r.step).toFixed(6));
+    }
+    design.knees = KNEE_CHOICES[Math.floor(next() * KNEE_CHOICES.length)];
+    if (checkDesign(design).length === 0) return design;
+  }
+  throw new Error(`no design passed the checks in ${MAX_DRAWS} draws (seed ${seed})`);
+}
+
 /**
  * The settings that describe a creature file best (the presets: public/creatures/NAME.json):
  * its first leg pair's legs, its frames' mean size, mass and hip spacing, the mean spacing of its

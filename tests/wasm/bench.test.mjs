@@ -53,7 +53,7 @@ test('native and WASM `bench --json` print documents valid against bench/schema.
   }
 });
 
-test('a crowd of a creature (`bench --creature`): the same state in every mode and thread count, natively and as WASM', () => {
+test('a crowd of a creature, and a mixed crowd of creatures (`bench --creature`): the same state in every mode and thread count, natively and as WASM', () => {
   const args = ['bench', '--creature', 'public/creatures/insect.json', '--characters', '3', '--threads', '1,2',
     '--mode', 'serial,controller,full', '--steps', '24', '--runs', '2', '--json'];
   for (const [cmd, pre] of [[native, []], [process.execPath, ['bench/wasm.mjs']]]) {
@@ -71,6 +71,26 @@ test('a crowd of a creature (`bench --creature`): the same state in every mode a
       assert.equal(p.state_hash, doc.points[0].state_hash, `${p.mode} on ${p.threads} threads`);
     }
   }
+  // A mixed crowd of any creatures, in turn: an insect, a spider, a dragon, an insect...
+  const mixed = ['bench', '--creature', 'public/creatures/insect.json,public/creatures/spider.json,public/creatures/dragon.json',
+    '--characters', '4', '--threads', '1,2', '--mode', 'serial,full', '--steps', '24', '--runs', '1', '--json'];
+  const hashes = [];
+  for (const [cmd, pre] of [[native, []], [process.execPath, ['bench/wasm.mjs']]]) {
+    const r = run(cmd, [...pre, ...mixed]);
+    assert.equal(r.status, 0, r.stderr);
+    const doc = JSON.parse(r.stdout);
+    assert.deepEqual(validate(doc), []);
+    assert.equal(doc.inputs.creature, 'insect+spider+dragon');
+    assert.deepEqual(doc.inputs.legs, ['mixed']);
+    assert.equal(doc.points.length, 3);
+    for (const p of doc.points) {
+      assert.equal(p.creature, 'insect+spider+dragon');
+      assert.ok(p.deterministic);
+      assert.equal(p.state_hash, doc.points[0].state_hash, `${p.mode} on ${p.threads} threads`);
+    }
+    hashes.push(doc.points[0].state_hash);
+  }
+  assert.equal(hashes[1], hashes[0], 'the same state natively and as WASM');
   const both = run(native, ['bench', '--creature', 'public/creatures/insect.json', '--legs', '2']);
   assert.equal(both.status, 2);
   assert.match(both.stderr, /--creature and --legs: give one of them/);

@@ -33,8 +33,9 @@ const char* kBenchUsage =
     "whole step). Lists are comma separated; a range is A-B or A-B:STEP.\n"
     "\n"
     "  --legs 2|4|mixed[,...]        bipeds, quadrupeds, or both alternating (default 2)\n"
-    "  --creature FILE               instead of --legs: a crowd of this creature file's body\n"
-    "                                (public/creatures/*.json), walking at 0.4 m/s\n"
+    "  --creature FILE,...           instead of --legs: a crowd of these creature files' bodies\n"
+    "                                (public/creatures/*.json) in turn, each walking at its\n"
+    "                                kind's cruise speed (0.4 m/s but for one leg frame's 1 m/s)\n"
     "  --characters LIST             crowd sizes, e.g. 1-100:10 or 1,50,100 (default 1-100:11)\n"
     "  --threads LIST                thread counts, e.g. 1,2,3,4, up to 16 (default 1 and every\n"
     "                                core of the device, e.g. 1,8; in WebAssembly at most the\n"
@@ -159,6 +160,18 @@ json frames(const std::vector<sim::Stat>& f) {
 
 std::string legsName(int legs) { return legs == sim::kMixed ? "mixed" : std::to_string(legs); }
 
+// A crowd of creatures as the bench JSON names it: their files' names in turn, "insect+spider".
+std::string creatureNames(const std::vector<const body::Morphology*>& creatures) {
+  std::string names;
+  for (const body::Morphology* m : creatures) names += (names.empty() ? "" : "+") + m->name;
+  return names;
+}
+std::string creatureNames(const std::vector<body::Morphology>& creatures) {
+  std::vector<const body::Morphology*> pointers;
+  for (const body::Morphology& m : creatures) pointers.push_back(&m);
+  return creatureNames(pointers);
+}
+
 const char* kCsvHeader =
     "legs,characters,threads,mode,shards,steps,runs,controller_ms_mean,controller_ms_sd,"
     "physics_ms_mean,physics_ms_sd,step_ms_mean,step_ms_sd,step_ms_p50,step_ms_p99,step_ms_max,"
@@ -240,7 +253,7 @@ json benchJsonPoint(const sim::PointResult& r) {
       {"state_hash", r.stateHash},
       {"deterministic", r.deterministic},
   };
-  if (s.creature) p["creature"] = s.creature->name;
+  if (!s.creatures.empty()) p["creature"] = creatureNames(s.creatures);
   if (s.frames) {
     p["frames"] = {{"controller_ms", frames(r.frameController)},
                    {"physics_ms", frames(r.framePhysics)},
@@ -287,13 +300,21 @@ int runBenchCli(int argc, char** argv) {
   base.seed = static_cast<uint32_t>(seed);
   if (asJson && asCsv) return benchError("--json and --csv are exclusive");
   // Leg counts and modes are words; the rest numbers.
-  // A creature's crowd (body/creature.h): its leg count stands for --legs.
-  body::Morphology creature;
+  // A crowd of creatures (body/creature.h): their leg count stands for --legs ("mixed" when it
+  // differs among them).
+  std::vector<body::Morphology> creatures;
   const bool ofCreature = o.values.count("--creature") > 0;
   if (ofCreature) {
     if (o.values.count("--legs")) return benchError("--creature and --legs: give one of them");
-    const std::string file = o.values["--creature"];
-    if (const auto e = body::loadCreatureFile(file, &creature)) return benchError("--creature: " + file + ": " + e->describe());
+    const std::string list = o.values["--creature"];
+    for (size_t start = 0; start <= list.size();) {
+      const size_t comma = std::min(list.find(',', start), list.size());
+      const std::string file = list.substr(start, comma - start);
+      start = comma + 1;
+      if (file.empty()) return benchError("--creature: expected FILE,... (an empty name in '" + list + "')");
+      creatures.emplace_back();
+      if (const auto e = body::loadCreatureFile(file, &creatures.back())) return benchError("--creature: " + file + ": " + e->describe());
+    }
   }
   for (size_t start = 0; start <= legsText.size() && !ofCreature;) {
     size_t c = legsText.find(',', start);
@@ -314,14 +335,23 @@ int runBenchCli(int argc, char** argv) {
     if (!sim::parseMode(item, &m)) return benchError("--mode: '" + item + "' is not serial, controller or full");
     modes.push_back(m);
   }
-  if (ofCreature) legs = {static_cast<int>(creature.legs.size())};
+  if (ofCreature) {
+    const int first = static_cast<int>(creatures.front().legs.size());
+    const bool alike = std::all_of(creatures.begin(), creatures.end(), [&](const body::Morphology& m) {
+      return static_cast<int>(m.legs.size()) == first;
+    });
+    legs = {alike ? first : sim::kMixed};
+  }
   if (!parseList(charactersText, 1, 2000, &characters, &error)) return benchError("--characters: " + error);
   if (ofCreature) {
     // As many as the render buffer holds of its bodies; in the WASM build a crowd the heap cannot
     // hold is refused when it is built (the point's error).
-    const int most = sim::Simulation::kRenderCapacity / static_cast<int>(creature.segments.size());
+    size_t segments = 0;  // of the largest body
+    for (const body::Morphology& m : creatures) segments = std::max(segments, m.segments.size());
+    const int most = sim::Simulation::kRenderCapacity / static_cast<int>(segments);
     if (*std::max_element(characters.begin(), characters.end()) > most)
-      return benchError("--characters: more than a simulation holds of " + creature.name + " (" + std::to_string(most) + ")");
+      return benchError("--characters: more than a simulation holds of " + creatureNames(creatures) + " (" +
+                        std::to_string(most) + ")");
   }
   for (int l : legs) {
     if (ofCreature) break;
@@ -348,7 +378,7 @@ int runBenchCli(int argc, char** argv) {
         for (int n : characters) {
           sim::PointSpec s = base;
           s.legs = l;
-          if (ofCreature) s.creature = &creature;
+          for (const body::Morphology& m : creatures) s.creatures.push_back(&m);
           s.mode = m;
           s.threads = m == sim::Mode::Serial ? 1 : t;
           s.characters = n;
@@ -367,7 +397,7 @@ int runBenchCli(int argc, char** argv) {
                    {"modes", modesJson},       {"steps", base.steps},      {"runs", base.runs},
                    {"shards", base.shards},    {"spacing_m", base.spacing}, {"seed", base.seed},
                    {"step_hz", 120},           {"frames", base.frames}};
-  if (ofCreature) doc["inputs"]["creature"] = creature.name;
+  if (ofCreature) doc["inputs"]["creature"] = creatureNames(creatures);
   doc["points"] = json::array();
 
   if (asCsv) {

@@ -121,10 +121,13 @@ PointResult runPoint(const PointSpec& spec) {
     // restarted" (thesis §4.2). Thread creation and scene building happen here, outside the
     // timed steps.
     auto sim = std::make_unique<Simulation>(spec.threads, spec.seed, r.shards);
-    if (spec.creature)
-      sim->creatureScene(*spec.creature, spec.characters, spec.spacing);
-    else
+    if (!spec.creatures.empty()) {
+      std::vector<body::Morphology> bodies;
+      for (const body::Morphology* m : spec.creatures) bodies.push_back(*m);
+      sim->creatureScene(bodies, spec.characters, spec.spacing);
+    } else {
       sim->crowdScene(crowdOf(spec.legs), spec.characters, spec.spacing);
+    }
     if (sim->characterCount() < spec.characters) {
       // Timings labelled with a crowd that was not simulated would be wrong: say so instead.
       r.error = "characters: only " + std::to_string(sim->characterCount()) + " of " +

@@ -28,9 +28,10 @@ enum Legs { kMixed = 0, kBiped = 2, kQuadruped = 4 };
 
 struct PointSpec {
   int legs = kBiped;
-  // A crowd of one creature file's body instead (body/creature.h, `gaitlab bench --creature`);
-  // `legs` is then its leg count. It must outlive the point.
-  const body::Morphology* creature = nullptr;
+  // A crowd of creature files' bodies instead, in turn (body/creature.h, `gaitlab bench
+  // --creature A,B`); `legs` is then their leg count, or kMixed if they differ. They must outlive
+  // the point.
+  std::vector<const body::Morphology*> creatures;
   int characters = 1;
   int threads = 1;
   Mode mode = Mode::Serial;

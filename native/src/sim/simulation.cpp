@@ -136,32 +136,31 @@ void Simulation::demoScene(int characters) {
 }
 
 void Simulation::crowdScene(Crowd crowd, int characters, double spacing) {
+  benchmarkCrowd(characters, spacing, [&](int i, const Place& p, int shard) {
+    return spawnCharacter(crowdKind(crowd, i), p.x, p.z, p.heading, shard);
+  });
+}
+
+void Simulation::creatureScene(const std::vector<body::Morphology>& bodies, int characters, double spacing) {
+  const size_t first = creatures_.size();
+  creatures_.insert(creatures_.end(), bodies.begin(), bodies.end());  // one of each for the whole crowd
+  benchmarkCrowd(characters, spacing, [&](int i, const Place& p, int shard) {
+    const body::Morphology& m = creatures_[first + static_cast<size_t>(i) % bodies.size()];
+    return creatureRoom(m) < 1 ? -1 : spawnBody(m, gait::characterOf(m), p.x, p.z, p.heading, shard);
+  });
+}
+
+void Simulation::benchmarkCrowd(int characters, double spacing,
+                                const std::function<int(int, const Place&, int)>& spawnAt) {
   for (int i = 0; i < characters; ++i) {
     const Place p = benchmarkPlace(i, characters, spacing);
-    const Character k = crowdKind(crowd, i);
     // Contiguous chunks of the grid per shard, split like the thesis's thread chunks (§4.3).
     int shard = 0;
     while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
-    if (spawnCharacter(k, p.x, p.z, p.heading, shard) < 0) break;
+    if (spawnAt(i, p, shard) < 0) break;
     gait::Controller& c = agents_.back()->controller;
-    c.setGoal({cruiseSpeed(k), 0.0});
+    c.setGoal({cruiseSpeed(agents_.back()->kind), 0.0});
     c.setPhase(std::fmod(i * 0.6180339887498949, 1.0));  // golden-ratio sequence: evenly spread
-  }
-  publish();
-}
-
-void Simulation::creatureScene(const body::Morphology& morphology, int characters, double spacing) {
-  creatures_.push_back(morphology);  // one body for the whole crowd
-  const body::Morphology& m = creatures_.back();
-  const Character kind = gait::characterOf(m);
-  for (int i = 0; i < characters; ++i) {
-    const Place p = benchmarkPlace(i, characters, spacing);
-    int shard = 0;
-    while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
-    if (creatureRoom(m) < 1 || spawnBody(m, kind, p.x, p.z, p.heading, shard) < 0) break;
-    gait::Controller& c = agents_.back()->controller;
-    c.setGoal({cruiseSpeed(Character::Quadruped), 0.0});
-    c.setPhase(std::fmod(i * 0.6180339887498949, 1.0));
   }
   publish();
 }

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -90,9 +91,10 @@ class Simulation {
   // frac(i / golden ratio), as a crowd would be, rather than 100 characters whose feet all strike
   // on the same step (docs/parallel.md, the p99).
   void crowdScene(Crowd crowd, int characters, double spacing);
-  // The same crowd of one creature file's body (body/creature.h, `gaitlab bench --creature`),
-  // walking at the quadruped's cruise speed with the gait spawnCreature gives it.
-  void creatureScene(const body::Morphology& morphology, int characters, double spacing);
+  // The same crowd of creature files' bodies (body/creature.h, `gaitlab bench --creature A,B`),
+  // the i-th character of body i mod bodies.size(), each walking at its kind's cruise speed with
+  // the gait spawnCreature gives it.
+  void creatureScene(const std::vector<body::Morphology>& bodies, int characters, double spacing);
   // The speed each type's preset is tuned and benchmarked for (bench/walking.mjs; also the demo's
   // start goals): a 0.49 m dog walks slower than a 1.8 m human.
   static double cruiseSpeed(Character kind) { return kind == Character::Biped ? 1.0 : 0.4; }
@@ -234,6 +236,10 @@ class Simulation {
   // (gait/derived_gait.h), the others their kind's preset. -1 if no id is free.
   int spawnBody(const body::Morphology& m, Character kind, double x, double z, double heading, int shard);
   int roomFor(const body::Morphology& m, int64_t bytes) const;
+  // The crowd benchmark's grid (crowdScene, creatureScene): spawnAt(i, place, shard) spawns the
+  // i-th character (its id, or < 0 when there is no room, which ends the crowd), which then gets
+  // its kind's cruise speed and the i-th phase of an evenly spread sequence.
+  void benchmarkCrowd(int characters, double spacing, const std::function<int(int, const Place&, int)>& spawnAt);
   void publish() { render_.publish(stepIndex(), time()); }
   void applyDrag();     // interaction.cpp: the drag spring, before the physics of a step
   void updateFallen();  // interaction.cpp: fall times and the automatic reset, after it

@@ -11,14 +11,15 @@
 //   2. its first gait, the one derived from the body, walks 30 s at 0.4 m/s (the native CLI,
 //      `gaitlab walk --creature`: the same simulation as the page's, bit for bit);
 //   3. "Teach it to walk": the optimize panel searches a gait for that body in its worker with all
-//      of the device's threads, from the derived gait, for --budget seconds of wall clock, and is
-//      stopped there, keeping the best of the generations finished;
+//      of the device's threads, from the derived gait, with its teaching settings (episodes and
+//      goal speed: optimize-panel.ts, TEACHING; --seconds overrides the episodes), for --budget
+//      seconds of wall clock, and is stopped there, keeping the best of the generations finished;
 //   4. the best gait found walks 30 s at 0.4 m/s.
 // A body has learnt to walk if the gait it has after the search (or before it) walks those 30 s
 // without falling.
 //
 //   node bench/learning.mjs [--random 20] [--budget 180] [--shipped insect,spider,dragon]
-//        [--candidates 10] [--seconds 6.66667] [--out bench/results/learning]
+//        [--candidates 10] [--seconds S] [--out bench/results/learning]
 //
 // Writes OUT.json and OUT.md. Needs the built page (npm run build) and Chromium.
 import { execFileSync } from 'node:child_process';
@@ -37,8 +38,9 @@ const inputs = {
   budget: Number(args.budget ?? 180),
   shipped: (args.shipped ?? 'insect,spider,dragon').split(',').filter((s) => s !== ''),
   candidates: Number(args.candidates ?? 10),
-  // The module's default episode: the thesis's 800 fixed steps at 120 Hz.
-  seconds: Number(args.seconds ?? 800 / 120),
+  // Episode length: the teaching settings' unless given (then read back from the search's options).
+  seconds: args.seconds === undefined ? null : Number(args.seconds),
+  // The walking criteria's slow speed: what the judgement walks at, and the teaching goal.
   speed: 0.4,
   judgeSeconds: 30,
 };
@@ -90,8 +92,8 @@ try {
     let after = before;
     if (inputs.budget > 0) {
       await page.evaluate((form) => { window.__run = window.gaitlab.designer.teach(form); }, {
-        generations: 1_000_000, candidates: inputs.candidates, seconds: inputs.seconds, speeds: String(inputs.speed),
-        seed: 1, start: 'preset', threads: machine.hardwareConcurrency,
+        generations: 1_000_000, candidates: inputs.candidates, ...(inputs.seconds === null ? {} : { seconds: inputs.seconds }),
+        speeds: String(inputs.speed), seed: 1, start: 'preset', threads: machine.hardwareConcurrency,
       });
       const t0 = Date.now();
       await page.waitForFunction(() => window.gaitlab.optimizeStatus().state === 'running', null, { timeout: 120_000, polling: 200 });
@@ -106,6 +108,8 @@ try {
         best_objective: status.best,
         start_objective: status.history[0]?.best ?? null,
         seconds_per_generation: status.secondsPerGeneration,
+        episode_seconds: status.options?.settings.seconds ?? null,
+        goal_speeds: status.options?.speeds ?? null,
         load_seconds: loadSeconds,
       };
       if (status.result) after = judge(creature, status.result, `${item.name}-learnt`);
@@ -146,6 +150,11 @@ const result = {
 };
 mkdirSync(path.dirname(out), { recursive: true });
 writeFileSync(`${out}.json`, `${JSON.stringify(result, null, 2)}\n`);
+/** The episode lengths the searches used, as read back from their options. */
+function episodes(list) {
+  const lengths = [...new Set(list.map((b) => b.search?.episode_seconds).filter((x) => x != null))];
+  return lengths.length ? lengths.map((x) => `${x.toFixed(2)} s`).join(' / ') : '–';
+}
 const row = (b) => `| ${b.name} | ${b.legs} | ${b.derived_gait.fell ? `falls at ${b.derived_gait.fall_time_s.toFixed(1)} s` : 'walks'} | ` +
   `${b.search ? `${b.search.generations} (${b.search.seconds_per_generation?.toFixed(2) ?? '–'} s each)` : '–'} | ` +
   `${b.search ? `${b.search.start_objective?.toPrecision(4) ?? '–'} → ${b.search.best_objective?.toPrecision(4) ?? '–'}` : '–'} | ` +
@@ -154,7 +163,7 @@ writeFileSync(`${out}.md`, [
   `# The learning benchmark`,
   ``,
   `${started}, ${result.machine.cpus} × ${result.machine.cpu}, ${machine?.userAgent ?? ''}; budget ${inputs.budget} s of search per body,`,
-  `${inputs.candidates} candidates per generation, ${inputs.seconds.toFixed(2)} s episodes at ${inputs.speed} m/s; judged by 30 s at ${inputs.speed} m/s.`,
+  `${inputs.candidates} candidates per generation, ${episodes(bodies)} episodes at ${inputs.speed} m/s; judged by 30 s at ${inputs.speed} m/s.`,
   ``,
   `Random bodies that walk 30 s: ${result.summary.random_walk_before_search} of ${randomBodies.length} with their derived gait, ` +
     `${result.summary.random_walk_after_search} of ${randomBodies.length} after the search.`,

@@ -132,12 +132,12 @@ const designer = new CreatureDesigner(panel.gui, {
   select,
   creatureUrl,
   // "Teach it to walk": the optimize panel searches a gait for the designed body.
-  teach: (file) => {
+  teach: (file, values) => {
     const character = typeOfLegFrames(file.legFrames.length);
     if (!optimizer) throw new Error('the optimize panel is not ready yet');
     if (!character) throw new Error(`a body of ${file.legFrames.length} leg frames is no kind of character`);
     optimizer.element.open = true;
-    return optimizer.teach({ json: JSON.stringify(file), name: file.name, character });
+    return optimizer.teach({ json: JSON.stringify(file), name: file.name, character }, values);
   },
 });
 

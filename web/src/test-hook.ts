@@ -148,8 +148,9 @@ export interface DesignerHook {
   /** A random body within the designer's limits (creature/design.ts, randomDesign; the same seed, the same body). */
   randomize(seed: number): void;
   /**
-   * "Teach it to walk": the optimize panel searches a gait for the designed body, after writing
-   * `form` into its fields as optimize() does; resolves with optimizeStatus() when it ends.
+   * "Teach it to walk": the optimize panel searches a gait for the designed body with its
+   * teaching settings and `form` written over them into its fields, as optimize() does; resolves
+   * with optimizeStatus() when it ends.
    */
   teach(form?: OptimizeForm): Promise<OptimizeStatus>;
 }
@@ -241,10 +242,7 @@ export function installTestHook(host: TestHookHost): GaitlabHook {
       preview: () => host.designer().preview(),
       preset: (name: DesignPreset) => host.designer().loadPreset(name),
       randomize: (seed: number) => host.designer().set(randomDesign(seed)),
-      teach: async (form?: OptimizeForm) => {
-        if (form) optimizer().setForm(form);
-        return (await host.designer().teach()) as OptimizeStatus;
-      },
+      teach: async (form?: OptimizeForm) => (await host.designer().teach(form)) as OptimizeStatus,
     }),
   };
   window.gaitlab = Object.freeze(hook);

@@ -577,12 +577,11 @@ void* gl_opt_create_creature(const gl_opt_settings* settings, const char* startJ
     if (const auto error = gait::parseGaitFile(startJson, c, &start))
       return refuse<void*>(nullptr, "start: " + error->describe());
   }
-  // The search tunes the start's primary key ("params"); its other speed keys walk with it. A
-  // creature starts from what it walks when spawned (sim::Simulation::spawnBody).
+  // The search tunes the start's key nearest the goal speeds (optimize::tunedKey); its other speed
+  // keys walk with it. A creature starts from what it walks when spawned (sim::Simulation::spawnBody).
   o.gait = startJson ? start.gait
            : body && gait::derivesGait(c) ? gait::Gait::single(gait::derivedGait(*body), gait::kDerivedFromSpeed)
                                           : gait::defaultGait(c);
-  o.key = o.gait.primary;
   if (objectiveJson) {
     if (const auto error = gait::checkJsonText(objectiveJson))
       return refuse<void*>(nullptr, "objective settings: " + error->describe());
@@ -591,8 +590,9 @@ void* gl_opt_create_creature(const gl_opt_settings* settings, const char* startJ
                                                : optimize::readObjectiveSettings(j, &o.objective);
     if (!error.empty()) return refuse<void*>(nullptr, error);
   }
+  o.key = optimize::tunedKey(o.gait, o.objective.speeds);
   if (!takeWorkers(o.threads)) return refuse<void*>(nullptr, noWorkers(o.threads));
-  return new OptHandle{optimize::Optimizer::create(o, o.gait.primaryParams()), c, {}};
+  return new OptHandle{optimize::Optimizer::create(o, o.gait.keys[o.key].params), c, {}};
 }
 
 const char* gl_opt_settings_json(void) {

@@ -120,7 +120,8 @@ const char* kOptimizeUsage =
     "  --creature FILE               search for this body (a creature file), not the kind's\n"
     "                                shipped one; its leg frames choose the kind\n"
     "  --key M_S                     of a gait with speed keys, tune the key at this speed\n"
-    "                                (default: the file's \"params\"); episodes walk with every key\n"
+    "                                (default: the key nearest the goal speeds' mean, the one the\n"
+    "                                episodes walk with most); episodes walk with every key\n"
     "  --hold NAME,...               parameters left as they start: schema names\n"
     "                                (frontLeft.stepTrigger) or a field every leg or leg frame\n"
     "                                has (stepTrigger: every leg's), e.g. to keep a footfall pattern\n"
@@ -509,7 +510,7 @@ int optimizeCommand(int argc, char** argv) {
     search.gait = gait::defaultGait(search.character);
     if (gait::derivesGait(search.character)) startName = "derived";
   }
-  search.key = search.gait.primary;
+  search.key = -1;  // unless --key names one: tunedKey, once the goal speeds are read
   if (o.values.count("--key")) {
     double speed = 0;
     if (!o.number("--key", 0, 5, 0.0, &speed)) return api::usageError("optimize", o.error);
@@ -521,7 +522,6 @@ int optimizeCommand(int argc, char** argv) {
                                              " m/s; its keys are at " + speeds + " m/s");
     }
   }
-  const gait::GaitParams tuned = search.gait.keys[search.key].params;
   if (o.values.count("--hold")) {
     std::string list = o.values["--hold"];
     for (size_t at = 0; at <= list.size();) {
@@ -561,6 +561,8 @@ int optimizeCommand(int argc, char** argv) {
   const std::string settingsError =
       optimize::readObjectiveOptions(given("--speeds"), given("--grounds"), given("--objective"), &search.objective);
   if (!settingsError.empty()) return api::usageError("optimize", settingsError);
+  if (search.key < 0) search.key = optimize::tunedKey(search.gait, search.objective.speeds);
+  const gait::GaitParams tuned = search.gait.keys[search.key].params;
 
   std::string command = "gaitlab";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];

@@ -21,6 +21,14 @@ int Gait::keyAt(double speed) const {
   return -1;
 }
 
+int Gait::nearestKey(double speed) const {
+  const double s = std::abs(speed);
+  int best = 0;
+  for (size_t i = 1; i < keys.size(); ++i)
+    if (std::abs(keys[i].speed - s) < std::abs(keys[best].speed - s)) best = static_cast<int>(i);
+  return best;
+}
+
 bool Gait::heldAlike(double a, double b) const {
   a = std::abs(a);
   b = std::abs(b);

@@ -45,6 +45,9 @@ struct Gait {
   GaitParams& primaryParams() { return keys[primary].params; }
   // The key tuned at `speed` (within 1e-9 m/s), or -1.
   int keyAt(double speed) const;
+  // The key whose speed is nearest |speed| (the slower of two as near): the one a walk at that
+  // goal uses most.
+  int nearestKey(double speed) const;
   // Whether paramsAtSpeed gives the same parameters at speeds `a` and `b`: both at or below the
   // first key's speed, or both at or above the last's (held there), or the same speed.
   bool heldAlike(double a, double b) const;

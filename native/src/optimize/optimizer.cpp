@@ -34,6 +34,12 @@ std::vector<double> perturb(const std::vector<double>& x, const std::vector<doub
   return y;
 }
 
+int tunedKey(const gait::Gait& gait, const std::vector<double>& speeds) {
+  double mean = 0;
+  for (double v : speeds) mean += std::abs(v) / static_cast<double>(speeds.size());
+  return gait.nearestKey(mean);
+}
+
 std::string heldCoordinates(gait::Character c, const std::vector<std::string>& names, std::vector<bool>* mask) {
   const std::vector<gait::ParamSpec>& specs = gait::paramSpecs(c);
   std::vector<bool> held(gait::paramDimension(c), false);

@@ -54,7 +54,7 @@ struct SearchOptions {
   double cmaSigma = 0.1;
   // A gait of several speed keys (gait/speed_keys.h): the search tunes key `key` and every episode
   // walks with the whole gait, its other keys as they are. Empty: the tuned parameters are the
-  // whole gait.
+  // whole gait. By default (tunedKey) the key the episodes walk with most.
   gait::Gait gait;
   int key = 0;
   // Parameters the search leaves as they start, each a schema name ("frontLeft.stepTrigger") or a
@@ -63,6 +63,11 @@ struct SearchOptions {
   // knows (docs/controller-notes.md §33). Checked by heldCoordinates.
   std::vector<std::string> held;
 };
+
+// The key a search tunes unless told which: the one nearest the mean of the goal speeds'
+// magnitudes, the key those episodes walk with most (a walk at 0.4 m/s blends the keys around it
+// and barely uses a key at 1.4 m/s, so tuning that one would leave every candidate scoring alike).
+int tunedKey(const gait::Gait& gait, const std::vector<double>& speeds);
 
 // Marks the coordinates of the flat parameter vector (gait::toVector) that `names` hold: mask has
 // gait::paramDimension(c) entries, a graph's knots all held with it. Returns "'NAME' is not a

@@ -621,3 +621,13 @@ TEST(OptimizeSearch, HeldNamesAreParametersOrFieldsAndOthersAreRefused) {
   EXPECT_NE(error.find("'frontLeft.stepTrigger' is not a parameter of the biped"), std::string::npos) << error;
   EXPECT_EQ(std::count(mask.begin(), mask.end(), true), gait::MotionGraph::kKnots + 1) << "unchanged on a refusal";
 }
+
+TEST(OptimizeSearch, TheTunedKeyIsTheOneTheGoalSpeedsWalkWithMost) {
+  const gait::Gait biped = gait::defaultGait(gait::Character::Biped);  // keys 0, 0.15, 0.5, 1.4, 1.8, 2.5
+  ASSERT_GE(biped.keyAt(0.5), 0);
+  EXPECT_EQ(tunedKey(biped, {0.4}), biped.keyAt(0.5)) << "a slow walk blends the keys at 0.15 and 0.5";
+  EXPECT_EQ(tunedKey(biped, {1.0}), biped.primary) << "the primary key at 1.4 is the nearest to 1.0";
+  EXPECT_EQ(tunedKey(biped, {-0.3, 0.7}), biped.keyAt(0.5)) << "by the mean of the magnitudes";
+  EXPECT_EQ(tunedKey(biped, {2.4}), biped.keyAt(2.5));
+  EXPECT_EQ(tunedKey(gait::Gait::single(gait::defaultParams(gait::Character::Biped), 1.4), {0.1}), 0);
+}

@@ -19,6 +19,7 @@ import {
   type NumericSetting,
 } from '../creature/design';
 import type { CharacterStatus, SceneCommand } from '../sim/protocol';
+import type { OptimizeForm } from '../optimize/options';
 
 /** The shipped creatures a design can start from (public/creatures/NAME.json). */
 export const DESIGN_PRESETS = ['insect', 'spider', 'dragon', 'quadruped', 'biped'] as const;
@@ -51,8 +52,11 @@ export interface DesignerHost {
   select(id: number | null): void;
   /** Where the shipped creature file NAME is served. */
   creatureUrl(name: string): URL;
-  /** Searches a gait for `file`'s body in the optimize panel; resolves when the search ends. */
-  teach(file: CreatureFile): Promise<unknown>;
+  /**
+   * Searches a gait for `file`'s body in the optimize panel (its teaching settings, `values` of
+   * its form over them); resolves when the search ends.
+   */
+  teach(file: CreatureFile, values?: OptimizeForm): Promise<unknown>;
 }
 
 /** The spawn the designer waits to see in the worker's reports. */
@@ -313,10 +317,10 @@ export class CreatureDesigner {
    * from it), and its learner shows the best so far. Rejects when the body is refused (as the
    * status line says) or the search cannot start (as the optimize panel says).
    */
-  async teach(): Promise<unknown> {
+  async teach(values?: OptimizeForm): Promise<unknown> {
     const file = this.creatureJson();
     if (!file) throw new Error(this.error() ?? 'the body is refused');
-    return this.host.teach(file);
+    return this.host.teach(file, values);
   }
 
   /** Downloads the design as a creature file (for `gaitlab walk --creature FILE` and the like). */

@@ -92,6 +92,15 @@ const LABELS: Record<string, string> = {
   pushImpulse: 'pushes (N·s)',
 };
 
+/**
+ * What "Teach it to walk" searches with, written into the form: from the body's own first gait,
+ * at the walking criteria's slow speed, with episodes as long as the walk a new body is judged by.
+ * Episodes of the thesis's 6.7 s let the search trade a fall 10 or 25 s in for a tidier first
+ * 6 s: in the learning benchmark three hexapods whose first gait walked 30 s fell after 3 minutes
+ * of such a search (docs/creatures.md, "Teaching").
+ */
+export const TEACHING: OptimizeForm = { start: 'preset', speeds: '0.4', seconds: 30 };
+
 function el<K extends keyof HTMLElementTagNameMap>(tag: K, props: Partial<HTMLElementTagNameMap[K]> = {}, ...children: (Node | string)[]): HTMLElementTagNameMap[K] {
   const node = Object.assign(document.createElement(tag), props);
   node.append(...children);
@@ -278,10 +287,13 @@ export class OptimizePanel {
     this.setDisabled(false);
   }
 
-  /** "Teach it to walk": a search for `body`, shown as any other (the test hook awaits it). */
+  /**
+   * "Teach it to walk": a search for `body` with the teaching settings (TEACHING, then `values`
+   * over them), shown as any other (the test hook awaits it).
+   */
   teach(body: LearnerBody, values?: OptimizeForm): Promise<OptimizeStatus> {
     this.useBody(body);
-    return this.start(values);
+    return this.start({ ...TEACHING, ...values });
   }
 
   private say(text: string | null, kind: 'info' | 'problem' = 'info'): void {

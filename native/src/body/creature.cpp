@@ -105,6 +105,9 @@ struct LegsSpec {
   bool kneeForward = true;
   double flexion = 0, hyperextension = 0, anklePitch = 0, ankleRoll = 0;
   LimbSpec upper, lower;
+  // A third segment (file version 2): length 0 for legs of two segments.
+  LimbSpec tarsus;
+  double hockFlexion = 0, hockHyperextension = 0;
   Vector3d footHalf = Vector3d::Zero();
   double footForward = 0, footMass = 0, ankleAboveFoot = 0;
   unsigned left = 0, right = 0, foot = 0;
@@ -129,8 +132,25 @@ bool readLimb(Reader& r, const json& v, const std::string& path, LimbSpec* out) 
          r.number(v["mass"], join(path, "mass"), kMinMass, kMaxMass, &out->mass);
 }
 
-bool readLegs(Reader& r, const json& v, const std::string& path, LegsSpec* out) {
-  if (!r.fields(v, path, {"name", "hipSpacing", "hip", "knee", "ankle", "upper", "lower", "foot", "colours"}) ||
+// The third segment, "tarsus" (version 2, optional): a limb and its hock's range, which bends the
+// other way to the knee.
+bool readTarsus(Reader& r, const json& v, const std::string& path, LegsSpec* out) {
+  const std::string hock = join(path, "hock");
+  return r.fields(v, path, {"length", "halfThickness", "mass", "hock"}) &&
+         r.number(v["length"], join(path, "length"), 0.01, kMaxSize, &out->tarsus.length) &&
+         r.number(v["halfThickness"], join(path, "halfThickness"), kMinSize, 0.5, &out->tarsus.halfThickness) &&
+         r.number(v["mass"], join(path, "mass"), kMinMass, kMaxMass, &out->tarsus.mass) &&
+         r.fields(v["hock"], hock, {"flexion", "hyperextension"}) &&
+         r.number(v["hock"]["flexion"], join(hock, "flexion"), 0, kPi, &out->hockFlexion) &&
+         r.number(v["hock"]["hyperextension"], join(hock, "hyperextension"), 0, kPi / 2, &out->hockHyperextension);
+}
+
+bool readLegs(Reader& r, const json& v, const std::string& path, int version, LegsSpec* out) {
+  const bool three = v.is_object() && v.contains("tarsus");
+  if (three && version < 2) return r.fail(join(path, "tarsus"), "a third leg segment needs version 2 of the format");
+  if (three && !readTarsus(r, v["tarsus"], join(path, "tarsus"), out)) return false;
+  if (!(three ? r.fields(v, path, {"name", "hipSpacing", "hip", "knee", "ankle", "upper", "lower", "tarsus", "foot", "colours"})
+              : r.fields(v, path, {"name", "hipSpacing", "hip", "knee", "ankle", "upper", "lower", "foot", "colours"})) ||
       !r.text(v["name"], join(path, "name"), 0, &out->name) ||
       !r.number(v["hipSpacing"], join(path, "hipSpacing"), 0, 1, &out->hipSpacing))
     return false;
@@ -167,7 +187,7 @@ bool readLegs(Reader& r, const json& v, const std::string& path, LegsSpec* out) 
          r.colour(v["colours"]["foot"], join(colours, "foot"), &out->foot);
 }
 
-bool readFrame(Reader& r, const json& v, const std::string& path, FrameSpec* out) {
+bool readFrame(Reader& r, const json& v, const std::string& path, int version, FrameSpec* out) {
   return r.fields(v, path, {"name", "z", "halfExtents", "mass", "aboveHips", "colour", "legs"}) &&
          r.text(v["name"], join(path, "name"), 1, &out->name) &&
          r.number(v["z"], join(path, "z"), -5, 5, &out->z) &&
@@ -175,7 +195,7 @@ bool readFrame(Reader& r, const json& v, const std::string& path, FrameSpec* out
          r.number(v["mass"], join(path, "mass"), kMinMass, kMaxMass, &out->mass) &&
          r.number(v["aboveHips"], join(path, "aboveHips"), -1, 1, &out->aboveHips) &&
          r.colour(v["colour"], join(path, "colour"), &out->colour) &&
-         readLegs(r, v["legs"], join(path, "legs"), &out->legs);
+         readLegs(r, v["legs"], join(path, "legs"), version, &out->legs);
 }
 
 bool readSpine(Reader& r, const json& v, const std::string& path, SpineSpec* out) {
@@ -222,13 +242,15 @@ Joint ball(const Vector3d& pivot, const std::array<double, 3>& lo, const std::ar
 
 // The height of a leg frame's hips: its legs hanging straight down, feet flat on y = 0.
 double hipHeight(const LegsSpec& d) {
-  return 2 * d.footHalf.y() + d.ankleAboveFoot + d.lower.length + d.upper.length;
+  return 2 * d.footHalf.y() + d.ankleAboveFoot + d.tarsus.length + d.lower.length + d.upper.length;
 }
 
-// Appends upper leg, lower leg and foot hanging straight down from `hip`; returns the Leg.
+// Appends upper leg, lower leg, the tarsus if it has one, and foot hanging straight down from
+// `hip`; returns the Leg.
 Leg addLeg(Morphology& m, const std::string& name, int legFrame, const Vector3d& hip, const LegsSpec& d,
            unsigned rgba) {
-  const double ankleY = hip.y() - d.upper.length - d.lower.length;
+  const double hockY = hip.y() - d.upper.length - d.lower.length;
+  const double ankleY = hockY - d.tarsus.length;  // for two segments, hockY itself
   const Vector3d knee(hip.x(), hip.y() - d.upper.length, hip.z());
   const Vector3d ankle(hip.x(), ankleY, hip.z());
   Leg leg;
@@ -246,11 +268,20 @@ Leg addLeg(Morphology& m, const std::string& name, int legFrame, const Vector3d&
   const double flexHi = d.kneeForward ? d.flexion : d.hyperextension;
   leg.lower = static_cast<int>(m.segments.size());
   m.segments.push_back({name + ".lower", {d.lower.halfThickness, d.lower.length / 2, d.lower.halfThickness},
-                        d.lower.mass, {hip.x(), ankleY + d.lower.length / 2, hip.z()}, leg.upper,
+                        d.lower.mass, {hip.x(), hockY + d.lower.length / 2, hip.z()}, leg.upper,
                         hinge(knee, flexLo, flexHi), rgba});
+  if (d.tarsus.length > 0) {
+    // The hock bends the other way to the knee: its flexion is the knee's mirrored.
+    const double hockLo = d.kneeForward ? -d.hockFlexion : -d.hockHyperextension;
+    const double hockHi = d.kneeForward ? d.hockHyperextension : d.hockFlexion;
+    leg.tarsus = static_cast<int>(m.segments.size());
+    m.segments.push_back({name + ".tarsus", {d.tarsus.halfThickness, d.tarsus.length / 2, d.tarsus.halfThickness},
+                          d.tarsus.mass, {hip.x(), ankleY + d.tarsus.length / 2, hip.z()}, leg.lower,
+                          hinge({hip.x(), hockY, hip.z()}, hockLo, hockHi), rgba});
+  }
   leg.foot = static_cast<int>(m.segments.size());
   m.segments.push_back({name + ".foot", d.footHalf, d.footMass, {hip.x(), d.footHalf.y(), hip.z() + d.footForward},
-                        leg.lower, universal(ankle, d.anklePitch, d.ankleRoll), d.foot});
+                        leg.aboveAnkle(), universal(ankle, d.anklePitch, d.ankleRoll), d.foot});
   return leg;
 }
 
@@ -314,7 +345,7 @@ std::optional<CreatureError> parseCreatureFile(const std::string& text, Morpholo
                                           " leg frames, got " + gait::jsonTypeName(fj)};
   std::vector<FrameSpec> frames(fj.size());
   for (size_t k = 0; k < fj.size(); ++k) {
-    if (!readFrame(r, fj[k], at("legFrames", k), &frames[k])) return r.error;
+    if (!readFrame(r, fj[k], at("legFrames", k), version, &frames[k])) return r.error;
     if (k > 0 && !(frames[k].z < frames[k - 1].z))
       return CreatureError{join(at("legFrames", k), "z"), "leg frames go front to back: expected less than " +
                                                               json(frames[k - 1].z).dump()};

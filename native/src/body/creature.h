@@ -3,7 +3,7 @@
 // that a character's body, like its gait, is data. The thesis (Larsson 2015, §7.5) ends with
 // creatures of any leg count designed by their players; this is the format they are written in.
 //
-//   {"format": "gaitlab-creature", "version": 1, "name": "...", "armature": kg·m²,
+//   {"format": "gaitlab-creature", "version": 1 or 2, "name": "...", "armature": kg·m²,
 //    "legFrames": [{                          front to back, 1 to 4
 //      "name", "z": m (its centre, forward of the body's middle), "halfExtents": [x, y, z] m,
 //      "mass": kg, "aboveHips": m (its centre above its hips), "colour": "#rrggbb",
@@ -13,6 +13,7 @@
 //        "knee": {"points": "forward" | "backward", "flexion": rad, "hyperextension": rad},
 //        "ankle": {"pitch": rad, "roll": rad},           symmetric ranges
 //        "upper": {"length": m, "halfThickness": m, "mass": kg}, "lower": {the same},
+//        "tarsus": {the same, "hock": {"flexion": rad, "hyperextension": rad}},   version 2, optional
 //        "foot": {"halfExtents": [3 m], "forward": m (centre ahead of the ankle), "mass": kg,
 //                 "ankleAboveFoot": m (the ankle's pivot above the top of the foot's box)},
 //        "colours": {"left", "right", "foot"}}}],
@@ -21,8 +22,12 @@
 //      "halfHeight": m, "mass": kg (each link), "limit": rad (each axis of each joint),
 //      "colour"}]}
 //
+// A leg has two segments (upper, lower) or, with a "tarsus" (version 2), three: as a dog's hind
+// leg (femur, tibia, metatarsus) or a bird's, whose hock, between lower and tarsus, bends the other
+// way to the knee. Version 1 is version 2 without the tarsus; both are read.
+//
 // Legs hang straight down from their hips at rest: a leg frame's hips sit at the height its legs
-// reach, 2·foot half height + ankleAboveFoot + lower + upper, and its centre `aboveHips` higher. Spine
+// reach, 2·foot half height + ankleAboveFoot + tarsus + lower + upper, and its centre `aboveHips` higher. Spine
 // links lie at the height of the leg frame in front of them; the leg frame behind a section hangs
 // from its last link by a ball joint at "to". Segments are numbered leg frames and spine links
 // front to back, then the legs, each leg frame's left leg before its right.
@@ -38,7 +43,7 @@
 namespace gaitlab::body {
 
 constexpr const char* kCreatureFormat = "gaitlab-creature";
-constexpr int kCreatureFormatVersion = 1;
+constexpr int kCreatureFormatVersion = 2;
 constexpr int kMaxCreatureLegFrames = 4;
 
 // Why a creature file was refused: `field` the offending key as a path ("legFrames[1].legs.upper

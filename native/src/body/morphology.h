@@ -51,12 +51,27 @@ struct Segment {
   unsigned rgba;         // display colour
 };
 
-// One leg: a chain leg frame -> upper -> lower -> foot (hip, knee, ankle joints).
+// One leg: a chain leg frame -> upper -> lower -> foot (hip, knee, ankle joints), or of three
+// segments, leg frame -> upper -> lower -> tarsus -> foot (hip, knee, hock, ankle), as a dog's
+// hind leg (femur, tibia, metatarsus) or a bird's. The hock bends the other way to the knee.
 struct Leg {
   std::string name;
   int legFrame;  // segment index of the leg frame this leg hangs from
   int upper, lower, foot;
   double kneeBend;  // +1: the knee points forward (human, quadruped hind leg points back: -1)
+  int tarsus = -1;  // the third segment, between lower and foot; -1: a leg of two segments
+
+  // The segment the foot hangs from (the ankle's parent).
+  int aboveAnkle() const { return tarsus >= 0 ? tarsus : lower; }
+  // The leg's segments from the hip down, and how many (3 or 4).
+  int segments(int out[4]) const {
+    int n = 0;
+    out[n++] = upper;
+    out[n++] = lower;
+    if (tarsus >= 0) out[n++] = tarsus;
+    out[n++] = foot;
+    return n;
+  }
 };
 
 // The most links a spine section between two leg frames may have (creature files, body/creature.h).

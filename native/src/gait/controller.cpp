@@ -83,9 +83,11 @@ Controller::Controller(const body::Morphology& morphology, const GaitParams& par
     const body::Segment& upper = m_.segments[leg.upper];
     const body::Segment& lower = m_.segments[leg.lower];
     const body::Segment& foot = m_.segments[leg.foot];
+    const body::Segment& belowShin = m_.segments[leg.tarsus >= 0 ? leg.tarsus : leg.foot];
     LegGeometry g;
     g.thigh = (lower.joint.pivot - upper.joint.pivot).norm();
-    g.shin = (foot.joint.pivot - lower.joint.pivot).norm();
+    g.shin = (belowShin.joint.pivot - lower.joint.pivot).norm();
+    g.tarsus = leg.tarsus >= 0 ? (foot.joint.pivot - belowShin.joint.pivot).norm() : 0.0;
     g.ankleHeight = foot.joint.pivot.y() - (foot.center.y() - foot.halfExtents.y());
     g.side = upper.joint.pivot.x() >= 0 ? 1.0 : -1.0;
     const double ahead = foot.center.z() - foot.joint.pivot.z();
@@ -446,6 +448,7 @@ void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
   const BodyState& frame = s.segments[leg.legFrame];
   const BodyState& thigh = s.segments[leg.upper];
   const BodyState& shin = s.segments[leg.lower];
+  const BodyState& aboveAnkle = s.segments[leg.aboveAnkle()];
   const BodyState& foot = s.segments[leg.foot];
   const double phi = state.stance ? 1.0 : state.progress;
 
@@ -477,10 +480,11 @@ void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
                                               state.lateStrikeOffset);
   const Vector3d ankleTarget = footTarget + Vector3d(0, g.ankleHeight, 0);
 
-  // Hip and knee by two-link IK (law of cosines) plus PD (§3.1.4).
+  // Hip and knee by two-link IK (law of cosines) plus PD (§3.1.4); a three-segment leg's hock
+  // follows its knee (solveLegIk).
   const Vector3d hip = jointPivot(leg.upper, s);
   const Vector3d forward = headingForward(yaw);
-  const TwoLinkIk ik = solveTwoLinkIk(hip, ankleTarget, g.thigh, g.shin, forward * leg.kneeBend);
+  const LegIk ik = legIk(l, hip, ankleTarget, forward);
   const Quaterniond thighWanted = limbOrientation(ik.thighDir, forward);
   // The PDs may track the trajectory's velocity as well as its position (beyond the thesis,
   // swingTargetRate): with only the position, a PD lags a moving target by k_d/k_p (80 ms at
@@ -505,17 +509,21 @@ void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
   // Swing virtual force F_sw with gain k_ft(ϕ), K_d = 0.1 K_p (§3.1.4; defect 2), and gravity
   // compensation of the swing leg's segments (§3.1.5), both over the chain leg frame → ankle.
   const Vector3d ankle = jointPivot(leg.foot, s);
-  const Vector3d ankleVelocity = shin.linearVelocity + shin.angularVelocity.cross(ankle - shin.position);
+  const Vector3d ankleVelocity =
+      aboveAnkle.linearVelocity + aboveAnkle.angularVelocity.cross(ankle - aboveAnkle.position);
   const DofChain chain = legChain(l, s);
   const int n = static_cast<int>(m_.segments.size());
+  const int aboveAnkleDofs = chain.count - 2;  // every DOF but the ankle's two
   accumulateJointTorques(chain, ankle,
                          swingFootForce(p.footTrackingGain.eval(phi), ankle, ankleVelocity, ankleTarget),
-                         torques, n, 4);
-  SegmentLoad loads[3];
-  loads[0] = {m_.segments[leg.upper].mass, thigh.position, 3, 1.0};
-  loads[1] = {m_.segments[leg.lower].mass, shin.position, 4, 1.0};
-  loads[2] = {m_.segments[leg.foot].mass, foot.position, 6, 1.0};
-  accumulateGravityCompensation(chain, loads, 3, gravity_, torques, n);
+                         torques, n, aboveAnkleDofs);
+  SegmentLoad loads[4];
+  int loadCount = 0;
+  loads[loadCount++] = {m_.segments[leg.upper].mass, thigh.position, 3, 1.0};
+  loads[loadCount++] = {m_.segments[leg.lower].mass, shin.position, 4, 1.0};
+  if (leg.tarsus >= 0) loads[loadCount++] = {m_.segments[leg.tarsus].mass, aboveAnkle.position, 5, 1.0};
+  loads[loadCount++] = {m_.segments[leg.foot].mass, foot.position, chain.count, 1.0};
+  accumulateGravityCompensation(chain, loads, loadCount, gravity_, torques, n);
 
   // Foot: level during swing, to the strike angle after the strike time (§3.1.6).
   footPd(l, s, yaw, phi > lp.strikeTime ? p.strikeAngle : 0.0, k.ankleKp, k.ankleKd, torques);
@@ -536,7 +544,8 @@ Vector3d Controller::jointPivot(int segment, const CharacterState& s) const {
 }
 
 DofChain Controller::legChain(int l, const CharacterState& s) const {
-  // A leg's DOFs from the leg frame to the foot (§3.1.2): hip (3), knee (1), ankle (2).
+  // A leg's DOFs from the leg frame to the foot (§3.1.2): hip (3), knee (1), the hock (1) of a
+  // leg of three segments, ankle (2).
   const body::Leg& leg = m_.legs[l];
   const Vector3d hip = jointPivot(leg.upper, s), knee = jointPivot(leg.lower, s),
                  ankle = jointPivot(leg.foot, s);
@@ -545,9 +554,16 @@ DofChain Controller::legChain(int l, const CharacterState& s) const {
   chain.push(Vector3d::UnitY(), hip, leg.upper);
   chain.push(Vector3d::UnitZ(), hip, leg.upper);
   chain.push(s.segments[leg.upper].orientation * Vector3d::UnitX(), knee, leg.lower);
-  chain.push(s.segments[leg.lower].orientation * Vector3d::UnitX(), ankle, leg.foot);
+  if (leg.tarsus >= 0)
+    chain.push(s.segments[leg.lower].orientation * Vector3d::UnitX(), jointPivot(leg.tarsus, s), leg.tarsus);
+  chain.push(s.segments[leg.aboveAnkle()].orientation * Vector3d::UnitX(), ankle, leg.foot);
   chain.push(s.segments[leg.foot].orientation * Vector3d::UnitZ(), ankle, leg.foot);
   return chain;
+}
+
+LegIk Controller::legIk(int l, const Vector3d& hip, const Vector3d& ankle, const Vector3d& forward) const {
+  const LegGeometry& g = geometry_[l];
+  return solveLegIk(hip, ankle, g.thigh, g.shin, g.tarsus, forward * m_.legs[l].kneeBend);
 }
 
 void Controller::kneePd(int l, const CharacterState& s, double flexionWanted, Vector3d* torques,
@@ -555,24 +571,42 @@ void Controller::kneePd(int l, const CharacterState& s, double flexionWanted, Ve
   // Knee flexion is the shin's rotation about the thigh's x axis, signed so that bending the
   // way the knee points is positive (kneeBend), §3.1.4 and §3.1.7.
   const body::Leg& leg = m_.legs[l];
-  const BodyState& thigh = s.segments[leg.upper];
-  const BodyState& shin = s.segments[leg.lower];
-  const Vector3d axis = thigh.orientation * Vector3d::UnitX();
-  const double flexion =
-      leg.kneeBend * twistAngle(thigh.orientation.conjugate() * shin.orientation, Vector3d::UnitX());
-  const double rate = leg.kneeBend * (shin.angularVelocity - thigh.angularVelocity).dot(axis);
+  const Hinge knee = hinge(leg.upper, leg.lower, leg.kneeBend, s);
+  hingePd(knee, flexionWanted, rateWanted, torques);
+  // A three-segment leg's hock follows the knee as it is, not as it is asked to be: bent the
+  // other way by as much, at its rate, with its gains. That keeps the tarsus parallel to the thigh
+  // (solveLegIk's pantograph) as a pantograph leg's spring does (Sprowitz et al. 2013), while the
+  // knee alone takes the stance's compliance. Held instead to the knee's wanted flexion, the hock
+  // pushed the stance legs off the ground early: the insect with a 2 cm tarsus walked a 0.4 m/s
+  // goal at 0.11 m/s (docs/creatures.md, "Legs of three segments").
+  if (leg.tarsus >= 0) hingePd(hinge(leg.lower, leg.tarsus, -leg.kneeBend, s), knee.flexion, knee.rate, torques);
+}
+
+Controller::Hinge Controller::hinge(int parent, int child, double bend, const CharacterState& s) const {
+  const BodyState& p = s.segments[parent];
+  const BodyState& c = s.segments[child];
+  Hinge h;
+  h.child = child;
+  h.bend = bend;
+  h.axis = p.orientation * Vector3d::UnitX();
+  h.flexion = bend * twistAngle(p.orientation.conjugate() * c.orientation, Vector3d::UnitX());
+  h.rate = bend * (c.angularVelocity - p.angularVelocity).dot(h.axis);
+  return h;
+}
+
+void Controller::hingePd(const Hinge& h, double flexionWanted, double rateWanted, Vector3d* torques) const {
   const JointGains& k = params_.gains;
-  torques[leg.lower] += leg.kneeBend * pd(k.kneeKp, k.kneeKd, flexionWanted - flexion, rateWanted - rate) * axis;
+  torques[h.child] += h.bend * pd(k.kneeKp, k.kneeKd, flexionWanted - h.flexion, rateWanted - h.rate) * h.axis;
 }
 
 void Controller::footPd(int l, const CharacterState& s, double yaw, double pitch, double kp,
                         double kd, Vector3d* torques) {
   const body::Leg& leg = m_.legs[l];
-  const BodyState& shin = s.segments[leg.lower];
+  const BodyState& aboveAnkle = s.segments[leg.aboveAnkle()];
   const BodyState& foot = s.segments[leg.foot];
   const Quaterniond wanted = headingQuat(yaw) * Quaterniond(Eigen::AngleAxisd(pitch, Vector3d::UnitX()));
   torques[leg.foot] += orientationPd(kp, kd, foot.orientation, wanted, foot.angularVelocity,
-                                     shin.angularVelocity);
+                                     aboveAnkle.angularVelocity);
 }
 
 void Controller::limitToSupport(int l, const CharacterState& s, double load, Vector3d* torques) const {

@@ -8,6 +8,7 @@
 
 #include "body/morphology.h"
 #include "gait/gait_player.h"
+#include "gait/ik.h"
 #include "gait/params.h"
 #include "gait/speed_keys.h"
 #include "gait/support_polygon.h"
@@ -74,7 +75,8 @@ class Controller {
 
  private:
   struct LegGeometry {
-    double thigh, shin;          // hip→knee, knee→ankle lengths
+    double thigh, shin;          // hip→knee, knee→ankle (three segments: knee→hock) lengths
+    double tarsus;               // hock→ankle length; 0 for a leg of two segments
     double ankleHeight;          // ankle pivot above the sole
     double side;                 // +1 left (+x), −1 right
     // The sole around the ankle, in the foot's frame: how far the centre of pressure can move
@@ -92,8 +94,21 @@ class Controller {
   int legFrameIndex(const body::Leg& leg) const;  // its leg frame's place in m_.legFrames, front first
   Eigen::Vector3d jointPivot(int segment, const CharacterState& s) const;  // world, now
   DofChain legChain(int leg, const CharacterState& s) const;
+  // The leg's inverse kinematics for an ankle target (solveLegIk), its knee bent the way it points.
+  LegIk legIk(int leg, const Eigen::Vector3d& hip, const Eigen::Vector3d& ankle, const Eigen::Vector3d& forward) const;
+  // The knee's PD, and a three-segment leg's hock's, which follows the knee.
   void kneePd(int leg, const CharacterState& s, double flexionWanted, Eigen::Vector3d* torques,
               double rateWanted = 0.0);
+  // A knee or hock now: the child's rotation about the parent's x axis, signed by `bend` so that
+  // bending the way the joint bends is positive.
+  struct Hinge {
+    int child;
+    double bend;
+    Eigen::Vector3d axis;  // world
+    double flexion, rate;
+  };
+  Hinge hinge(int parent, int child, double bend, const CharacterState& s) const;
+  void hingePd(const Hinge& h, double flexionWanted, double rateWanted, Eigen::Vector3d* torques) const;
   void footPd(int leg, const CharacterState& s, double yaw, double pitch, double kp, double kd,
               Eigen::Vector3d* torques);
   void limitToSupport(int leg, const CharacterState& s, double load, Eigen::Vector3d* torques) const;

@@ -86,6 +86,17 @@ TwoLinkIk solveTwoLinkIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& targ
   return r;
 }
 
+LegIk solveLegIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& target, double thigh, double shin,
+                 double tarsus, const Eigen::Vector3d& bendDir) {
+  LegIk r;
+  r.chain = solveTwoLinkIk(hip, target, thigh + tarsus, shin, bendDir);
+  r.thighDir = r.chain.thighDir;
+  r.shinDir = r.chain.shinDir;
+  r.ankleLimb = tarsus > 0 ? r.chain.thighDir : r.chain.shinDir;
+  r.kneeFlexion = r.chain.kneeFlexion;
+  return r;
+}
+
 Eigen::Quaterniond limbOrientation(const Eigen::Vector3d& down, const Eigen::Vector3d& forward) {
   const Eigen::Vector3d y = -down.normalized();
   Eigen::Vector3d z = forward - forward.dot(y) * y;

@@ -26,6 +26,25 @@ struct TwoLinkIk {
 TwoLinkIk solveTwoLinkIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& target, double thigh,
                          double shin, const Eigen::Vector3d& bendDir);
 
+// A leg of two or three segments (body::Leg): hip → knee → [hock →] ankle.
+struct LegIk {
+  TwoLinkIk chain;             // the two-link solution below (for two segments, the leg itself)
+  Eigen::Vector3d thighDir;    // unit, hip → knee
+  Eigen::Vector3d shinDir;     // unit, knee → hock (two segments: knee → ankle)
+  Eigen::Vector3d ankleLimb;   // unit, the direction of the segment the foot hangs from
+  double kneeFlexion;          // 0 = straight; a hock bends as far the other way
+};
+
+// Solves a leg for an ankle target. Two segments (tarsus = 0): solveTwoLinkIk, bit for bit. Three:
+// as a pantograph, the tarsus held parallel to the thigh, as the pantograph legs of Cheetah-cub
+// (Sprowitz et al. 2013) hold their lowest segment and a trotting dog's hind leg nearly does; the
+// hock then bends the other way by the knee's flexion, and hip → ankle is thigh·u + shin·v +
+// tarsus·u = (thigh + tarsus)·u + shin·v: the two-link leg of lengths thigh + tarsus and shin,
+// solved by the law of cosines. One redundant joint, resolved by one rule, with the same knee
+// targets and gains as a two-segment leg.
+LegIk solveLegIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& target, double thigh, double shin,
+                 double tarsus, const Eigen::Vector3d& bendDir);
+
 // Orientation whose −y axis points along `down` (a limb hanging from its joint, as every leg
 // segment does at rest) and whose +z axis is as close as possible to `forward`: the desired
 // orientation of a thigh or shin from the IK's directions.

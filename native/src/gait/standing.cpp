@@ -128,9 +128,11 @@ void Controller::updateStand(const CharacterState& s, const Vector3d& comVelocit
       // friction holds only weakly about the vertical).
       standYaw_ = headingOf(s.segments[m_.legFrames[0]].orientation);
       // The table's pose: each leg joint as it came to rest (several leg frames).
-      for (const body::Leg& leg : m_.legs)
-        for (int seg : {leg.upper, leg.lower, leg.foot})
-          standPose_[seg] = s.segments[m_.segments[seg].parent].orientation.conjugate() * s.segments[seg].orientation;
+      for (const body::Leg& leg : m_.legs) {
+        int segs[4];
+        for (int i = 0, n = leg.segments(segs); i < n; ++i)
+          standPose_[segs[i]] = s.segments[m_.segments[segs[i]].parent].orientation.conjugate() * s.segments[segs[i]].orientation;
+      }
       [[fallthrough]];
     case Stand::Planted: {
       const double h = std::max(0.1, com_.y() - s.ground.at(com_.x(), com_.z()));
@@ -191,19 +193,18 @@ void Controller::plantedStance(const CharacterState& s, Vector3d* torques) {
   for (const body::Leg& leg : m_.legs) ++legsOfFrame[legFrameIndex(leg)];
   for (int l = 0; l < count; ++l) {
     const body::Leg& leg = m_.legs[l];
-    const LegGeometry& g = geometry_[l];
     const int f = legFrameIndex(leg);
     const int lf = m_.legFrames[f];
     const LegFrameParams& p = params_.legFrames[f];
     const BodyState& frame = s.segments[lf];
-    const BodyState& shin = s.segments[leg.lower];
+    const BodyState& aboveAnkle = s.segments[leg.aboveAnkle()];
 
     // The pose: this leg frame upright at the height it stands at, moved by the centre of mass's
     // correction; the hip where that puts it; the leg from there to its planted ankle.
     Vector3d framePosition = frame.position + shift;
     framePosition.y() = s.ground.at(framePosition.x(), framePosition.z()) + standHeight_[f];
     const Vector3d hip = framePosition + upright * (m_.segments[leg.upper].joint.pivot - m_.segments[lf].center);
-    const TwoLinkIk ik = solveTwoLinkIk(hip, jointPivot(leg.foot, s), g.thigh, g.shin, forward * leg.kneeBend);
+    const LegIk ik = legIk(l, hip, jointPivot(leg.foot, s), forward);
 
     // Weight: this foot's ground force through the leg's Jacobian transpose, taken at the sole.
     accumulateJointTorques(legChain(l, s), points[l], -forces[l], torques, segments);
@@ -213,8 +214,8 @@ void Controller::plantedStance(const CharacterState& s, Vector3d* torques) {
     // The knee's flexion, and the shin over the planted foot: the ankle's torque on the shin is
     // the opposite of its torque on the foot, which the ground holds.
     kneePd(l, s, ik.kneeFlexion, torques);
-    torques[leg.foot] -= orientationPd(k.stanceAnkleKp, k.stanceAnkleKd, shin.orientation,
-                                       limbOrientation(ik.shinDir, forward), shin.angularVelocity);
+    torques[leg.foot] -= orientationPd(k.stanceAnkleKp, k.stanceAnkleKd, aboveAnkle.orientation,
+                                       limbOrientation(ik.ankleLimb, forward), aboveAnkle.angularVelocity);
     // The foot flat on the ground, so that a foot that starts to tip is pressed back down; and no
     // more ankle torque than the sole can return.
     footPd(l, s, standYaw_, 0.0, k.stanceAnkleKp, k.stanceAnkleKd, torques);
@@ -231,7 +232,9 @@ void Controller::plantedTable(const CharacterState& s, Vector3d* torques) {
     const body::Leg& leg = m_.legs[l];
     accumulateJointTorques(legChain(l, s), points[l], -forces[l], torques, segments);
     // Every joint of the leg holds the pose it came to rest in.
-    for (int seg : {leg.upper, leg.lower, leg.foot}) {
+    int segs[4];
+    for (int i = 0, n = leg.segments(segs); i < n; ++i) {
+      const int seg = segs[i];
       const BodyState& child = s.segments[seg];
       const BodyState& parent = s.segments[m_.segments[seg].parent];
       torques[seg] += jointPd(kTableKp, kTableKd, parent.orientation, child.orientation, standPose_[seg],

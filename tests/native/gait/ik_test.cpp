@@ -151,3 +151,46 @@ TEST(GaitIk, DegenerateInputsStayFinite) {
 
 }  // namespace
 }  // namespace gaitlab::gait
+
+namespace gaitlab::gait {
+namespace {
+
+// A leg of three segments as a pantograph (solveLegIk): the tarsus parallel to the thigh, the
+// chain hip → knee → hock → ankle reaching every reachable target, the knee on the bend side and
+// the hock on the other; without a tarsus, the two-link solution to the last bit.
+TEST(GaitIk, ALegOfThreeSegmentsReachesItsTargetAsAPantograph) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Eigen::Vector3d hip(0.1, 0.9, 0.2), forward = Eigen::Vector3d::UnitZ();
+  const double thigh = 0.3, shin = 0.36, tarsus = 0.18;
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d target = hip + Eigen::Vector3d(0.3 * u(rng), -0.45 - 0.3 * std::abs(u(rng)), 0.3 * u(rng));
+    const LegIk ik = solveLegIk(hip, target, thigh, shin, tarsus, forward);
+    ASSERT_TRUE(ik.chain.reachable) << i;
+    const Eigen::Vector3d knee = hip + thigh * ik.thighDir;
+    const Eigen::Vector3d hock = knee + shin * ik.shinDir;
+    const Eigen::Vector3d ankle = hock + tarsus * ik.ankleLimb;
+    EXPECT_LT((ankle - target).norm(), 1e-9) << i;
+    EXPECT_LT((ik.ankleLimb - ik.thighDir).norm(), 1e-15) << "the tarsus is parallel to the thigh";
+    // The knee lies ahead of the hip–ankle line (the bend side), the hock behind it.
+    const Eigen::Vector3d line = (target - hip).normalized();
+    const auto side = [&](const Eigen::Vector3d& p) {
+      const Eigen::Vector3d off = (p - hip) - (p - hip).dot(line) * line;
+      return off.dot(forward - forward.dot(line) * line);
+    };
+    EXPECT_GT(side(knee), 0.0) << i;
+    EXPECT_LT(side(hock), 0.0) << i;
+    // Knee and hock bend by the same angle, the knee's flexion.
+    EXPECT_NEAR(angleBetween(ik.thighDir, ik.shinDir), ik.kneeFlexion, 1e-9);
+    EXPECT_NEAR(angleBetween(ik.shinDir, ik.ankleLimb), ik.kneeFlexion, 1e-9);
+  }
+  const Eigen::Vector3d target = hip + Eigen::Vector3d(0.05, -0.6, 0.1);
+  const LegIk two = solveLegIk(hip, target, 0.42, 0.42, 0.0, forward);
+  const TwoLinkIk plain = solveTwoLinkIk(hip, target, 0.42, 0.42, forward);
+  EXPECT_EQ(two.thighDir, plain.thighDir);
+  EXPECT_EQ(two.ankleLimb, plain.shinDir);
+  EXPECT_EQ(two.kneeFlexion, plain.kneeFlexion);
+}
+
+}  // namespace
+}  // namespace gaitlab::gait

@@ -9,6 +9,16 @@ import { startServer } from '../scripts/serve.mjs';
 /** Chromium to drive: $CHROMIUM or Debian's. */
 export const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
 
+/** Headless Chromium lowers the priority of pages it considers hidden; a benchmark is the foreground work here. */
+const FOREGROUND = ['--disable-background-timer-throttling', '--disable-renderer-backgrounding', '--disable-backgrounding-occluded-windows'];
+/** The demo page draws with WebGL: in software (SwiftShader), with no GPU and no sandbox on a server. */
+const WEBGL = ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader'];
+
+/** Headless Chromium for a benchmark; `webgl` for pages that draw (the demo page). */
+export function launchChromium({ webgl = false } = {}) {
+  return chromium.launch({ executablePath, headless: true, args: [...(webgl ? WEBGL : []), ...FOREGROUND] });
+}
+
 /** URL query of the page for a grid, in the CLI's terms. */
 export function benchQuery({ legs, characters, threads, modes, steps, runs, frames }) {
   const q = new URLSearchParams({
@@ -29,13 +39,7 @@ export function benchQuery({ legs, characters, threads, modes, steps, runs, fram
  */
 export async function runBenchPage(query, { readStatus, collect, onProgress = () => {}, stallMs, what }) {
   const server = await startServer({ port: 0, quiet: true });
-  const browser = await chromium.launch({
-    executablePath,
-    headless: true,
-    // Headless Chromium lowers the priority of pages it considers hidden; the benchmark is the
-    // foreground work here.
-    args: ['--disable-background-timer-throttling', '--disable-renderer-backgrounding', '--disable-backgrounding-occluded-windows'],
-  });
+  const browser = await launchChromium();
   try {
     const page = await browser.newPage();
     const errors = [];

@@ -76,3 +76,17 @@ export async function openRecordedPage(context, url) {
   await page.goto(url, { waitUntil: 'load', timeout: PAGE_TIMEOUT });
   return { page, problems };
 }
+
+/** The page's statistics (window.gaitlab.stats()). */
+export const stats = (page) => page.evaluate(() => window.gaitlab.stats());
+
+/** Waits until the page has drawn a simulated frame (or shows a problem), and checks it is fine. */
+export async function ready(page) {
+  await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null, {
+    timeout: PAGE_TIMEOUT,
+    polling: 250,
+  });
+  const s = await stats(page);
+  assert.equal(s.error, null, 'no problem is shown on the page');
+  return s;
+}

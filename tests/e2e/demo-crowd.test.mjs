@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
-import { openRecordedPage, PAGE_TIMEOUT, resultsDir, startBrowser } from './browser.mjs';
+import { openRecordedPage, PAGE_TIMEOUT, ready, resultsDir, startBrowser, stats } from './browser.mjs';
 
 const TEST_TIMEOUT = 240_000;
 
@@ -15,15 +15,7 @@ let browser;
 let server;
 let context;
 
-const stats = (page) => page.evaluate(() => window.gaitlab.stats());
 const characters = (page) => page.evaluate(() => window.gaitlab.characters());
-
-async function ready(page) {
-  await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null, { timeout: PAGE_TIMEOUT, polling: 250 });
-  const s = await stats(page);
-  assert.equal(s.error, null, 'no problem is shown on the page');
-  return s;
-}
 
 /** Steps a paused page by `steps` fixed steps (1200 at most per command) and waits for the report. */
 async function step(page, steps) {

@@ -7,12 +7,10 @@
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
-import { openRecordedPage, PAGE_TIMEOUT, resultsDir, startBrowser } from './browser.mjs';
+import { openRecordedPage, PAGE_TIMEOUT, resultsDir, startBrowser, stats } from './browser.mjs';
 
 const TEST_TIMEOUT = 240_000;
 let browser;
-
-const stats = (page) => page.evaluate(() => window.gaitlab.stats());
 
 /** Share of the screen where the canvas is what a finger would touch (sampled on a 20 px grid). */
 const sceneShare = (page) =>

@@ -12,7 +12,7 @@ import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
 import { chromium } from 'playwright-core';
 import { isDeepStrictEqual } from 'node:util';
-import { openRecordedPage, PAGE_TIMEOUT, repoDir, resultsDir, startBrowser } from './browser.mjs';
+import { openRecordedPage, PAGE_TIMEOUT, ready, repoDir, resultsDir, startBrowser, stats } from './browser.mjs';
 
 const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
 
@@ -26,19 +26,6 @@ let server;
 let context;
 
 const openPage = (url) => openRecordedPage(context, url);
-
-const stats = (page) => page.evaluate(() => window.gaitlab.stats());
-
-/** Waits until the page has drawn a simulated frame (or shows a problem), and checks it is fine. */
-async function ready(page) {
-  await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null, {
-    timeout: PAGE_TIMEOUT,
-    polling: 250,
-  });
-  const s = await stats(page);
-  assert.equal(s.error, null, 'no problem is shown on the page');
-  return s;
-}
 
 /** Waits for the worker's next report (4 a second) so characters() is current. */
 async function freshCharacters(page) {

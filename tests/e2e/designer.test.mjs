@@ -13,25 +13,12 @@
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { after, afterEach, before, describe, it } from 'node:test';
-import { openRecordedPage, PAGE_TIMEOUT, resultsDir, startBrowser } from './browser.mjs';
+import { openRecordedPage, PAGE_TIMEOUT, ready, resultsDir, startBrowser, stats } from './browser.mjs';
 
 const TEST_TIMEOUT = 240_000;
 
 /** @type {Awaited<ReturnType<typeof startBrowser>>} */
 let browser;
-
-const stats = (page) => page.evaluate(() => window.gaitlab.stats());
-
-/** Waits until the page has drawn a simulated frame (or shows a problem), and checks it is fine. */
-async function ready(page) {
-  await page.waitForFunction(() => window.gaitlab?.stats().ready || window.gaitlab?.stats().error, null, {
-    timeout: PAGE_TIMEOUT,
-    polling: 250,
-  });
-  const s = await stats(page);
-  assert.equal(s.error, null, 'no problem is shown on the page');
-  return s;
-}
 
 /** Steps a page opened with ?paused=1 to `seconds` of simulated time and returns the characters reported then. */
 async function stepTo(page, seconds) {
@@ -106,6 +93,23 @@ describe('the creature designer', { timeout: TEST_TIMEOUT * 3 }, () => {
     await page.waitForFunction((old) => ![null, old].includes(window.gaitlab.designer.preview()), id, { timeout: PAGE_TIMEOUT, polling: 100 });
     const characters = await page.evaluate(() => window.gaitlab.characters());
     assert.equal(characters.length, 3, 'the crowd and one preview: the old one was removed');
+
+    // Legs of three segments: the preview is rebuilt with a tarsus below every lower leg, and
+    // walks on them.
+    const two = await page.evaluate(() => window.gaitlab.designer.preview());
+    await page.evaluate(() => window.gaitlab.designer.set({ upperLength: 0.18, lowerLength: 0.18, tarsusLength: 0.1 }));
+    const three = await page.evaluate(() => window.gaitlab.designer.json());
+    assert.deepEqual(three.legFrames.map((f) => f.legs.tarsus?.length), [0.1, 0.1, 0.1]);
+    await page.waitForFunction((old) => ![null, old].includes(window.gaitlab.designer.preview()), two, { timeout: PAGE_TIMEOUT, polling: 100 });
+    const tarsal = await page.evaluate(() => window.gaitlab.designer.preview());
+    const owned = await page.evaluate((preview) => window.gaitlab.bodies().filter((b) => b.owner === preview).length, tarsal);
+    const segments = three.legFrames.length + three.spine.reduce((n, section) => n + section.links, 0) + 6 * 4;
+    assert.equal(owned, segments, 'its leg frames, its spine links, and six legs of four bodies each');
+    const from = (await page.evaluate(() => window.gaitlab.characters())).find((c) => c.id === tarsal);
+    const later = (await stepTo(page, (await stats(page)).simTime + 8)).find((c) => c.id === tarsal);
+    assert.equal(later?.fallen, false, 'it walks on legs of three segments without falling');
+    const distance = Math.hypot(later.position[0] - from.position[0], later.position[2] - from.position[2]);
+    assert.ok(distance > 1, `it walked ${distance.toFixed(2)} m in 8 s`);
     assert.deepEqual(problems, []);
   });
 

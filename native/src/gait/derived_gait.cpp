@@ -24,7 +24,7 @@ void scaleGraph(MotionGraph& g, double s) {
 }  // namespace
 
 GaitParams derivedGait(const body::Morphology& m) {
-  const body::Morphology quadruped = body::makeQuadruped();
+  const body::Morphology& quadruped = shippedBody(Character::Quadruped);
   GaitParams trot;
   paramsAtSpeed(Character::Quadruped, defaultGait(Character::Quadruped), kDerivedFromSpeed, &trot);
   GaitParams p = trot;
@@ -48,9 +48,8 @@ GaitParams derivedGait(const body::Morphology& m) {
   // Within the schema's bounds, so that what the body walks is a gait file of its kind: a body of
   // shorter legs than the quadruped's would step faster than the shortest period (0.3 s) allows.
   const Character c = characterOf(m);
-  std::vector<double> v = toVector(c, p), lo, hi;
-  bounds(c, &lo, &hi);
-  for (size_t i = 0; i < v.size(); ++i) v[i] = std::clamp(v[i], lo[i], hi[i]);
+  std::vector<double> v = toVector(c, p);
+  clampToBounds(c, &v);
   fromVector(c, v, &p);
   return p;
 }

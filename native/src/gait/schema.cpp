@@ -340,6 +340,12 @@ void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi) {
   }
 }
 
+void clampToBounds(Character c, std::vector<double>* values) {
+  std::vector<double> lo, hi;
+  bounds(c, &lo, &hi);
+  for (size_t i = 0; i < values->size() && i < lo.size(); ++i) (*values)[i] = std::clamp((*values)[i], lo[i], hi[i]);
+}
+
 std::string schemaJson(std::optional<Character> only) {
   using ordered = nlohmann::ordered_json;
   ordered characters = ordered::object(), morphologies = ordered::object();

@@ -105,6 +105,8 @@ std::vector<double> toVector(Character c, const GaitParams& params);
 void fromVector(Character c, const std::vector<double>& values, GaitParams* params);
 // Per-dimension bounds, in the same order.
 void bounds(Character c, std::vector<double>* lo, std::vector<double>* hi);
+// Brings each value of a flat vector (toVector's order) within its bounds.
+void clampToBounds(Character c, std::vector<double>* values);
 
 // The schema as JSON: {"version":5,"characters":{"biped":[entries],"quadruped":[entries]},
 // "morphologies":{"biped":{"kind","legFrames":[{"index","name"}],"legs":[{"index","name",

@@ -67,7 +67,7 @@ Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start
   gait::bounds(options.character, &lo_, &hi_);
   // A start outside the bounds (hand-edited in code, not loaded from a file) is brought inside.
   bestVector_ = gait::toVector(options.character, start);
-  for (size_t i = 0; i < bestVector_.size(); ++i) bestVector_[i] = std::clamp(bestVector_[i], lo_[i], hi_[i]);
+  gait::clampToBounds(options.character, &bestVector_);
   if (!heldCoordinates(options.character, options.held, &held_).empty()) held_.assign(bestVector_.size(), false);
 }
 

@@ -20,7 +20,7 @@ import {
 
 const shipped = (name: string): CreatureFile =>
   JSON.parse(fs.readFileSync(path.join(__dirname, '../../../public/creatures', `${name}.json`), 'utf8')) as CreatureFile;
-const SHIPPED = ['insect', 'spider', 'dragon', 'quadruped', 'biped'];
+const SHIPPED = ['insect', 'spider', 'dragon', 'bird', 'quadruped', 'biped'];
 
 const settingsOf = (problems: { setting: string }[]) => problems.map((p) => p.setting);
 
@@ -29,7 +29,7 @@ function expectReadable(file: CreatureFile): void {
   for (const f of file.legFrames) {
     for (const h of f.halfExtents) expect(h).toBeGreaterThanOrEqual(0.002);
     expect(f.mass).toBeGreaterThanOrEqual(0.01);
-    for (const limb of [f.legs.upper, f.legs.lower]) {
+    for (const limb of [f.legs.upper, f.legs.lower, ...(f.legs.tarsus ? [f.legs.tarsus] : [])]) {
       expect(limb.length).toBeGreaterThanOrEqual(0.01);
       expect(limb.length).toBeLessThanOrEqual(2);
       expect(limb.halfThickness).toBeGreaterThanOrEqual(0.002);
@@ -94,7 +94,7 @@ describe('creature designs', () => {
       const { file, problems } = designCreature({ ...DEFAULT_DESIGN, pairs, ...(pairs === 1 ? { upperLength: 0.42, lowerLength: 0.42, frameMass: 36, bodyWidth: 0.34, bodyHeight: 0.56 } : {}) });
       expect(problems, `${pairs} pairs`).toEqual([]);
       expect(file.format).toBe('gaitlab-creature');
-      expect(file.version).toBe(1);
+      expect(file.version).toBe(2);
       expect(file.legFrames).toHaveLength(pairs);
       expectReadable(file);
       // Centred on the body's middle.
@@ -120,6 +120,37 @@ describe('creature designs', () => {
     // Upper, lower and foot 0.6, 0.3, 0.1 of a leg.
     expect(f.legs.upper.mass / f.legs.lower.mass).toBeCloseTo(2, 5);
     expect(f.legs.lower.mass / f.legs.foot.mass).toBeCloseTo(3, 4);
+  });
+});
+
+describe('legs of three segments', () => {
+  it('get a tarsus with its hock, sharing the lower leg\'s mass by length; without one, none', () => {
+    const file = buildFile({ ...DEFAULT_DESIGN, upperLength: 0.2, lowerLength: 0.15, tarsusLength: 0.1 });
+    const legs = file.legFrames[1].legs;
+    expect(file.version).toBe(2);
+    expect(legs.tarsus).toBeDefined();
+    expect(legs.tarsus!.length).toBe(0.1);
+    expect(legs.tarsus!.hock).toEqual({ flexion: 2.4, hyperextension: 0.05 });
+    expect(legs.lower.mass / legs.tarsus!.mass).toBeCloseTo(0.15 / 0.1, 4);
+    // Upper 0.6, lower and tarsus together 0.3, foot 0.1 of a leg, as with two segments.
+    expect(legs.upper.mass / (legs.lower.mass + legs.tarsus!.mass)).toBeCloseTo(2, 4);
+    expect(legs.tarsus!.halfThickness).toBeLessThan(legs.lower.halfThickness);
+    expect(buildFile(DEFAULT_DESIGN).legFrames[0].legs.tarsus).toBeUndefined();
+  });
+
+  it('read back from the bird, and count in the leg\'s length', () => {
+    const bird = designFromFile(shipped('bird'));
+    expect(bird.tarsusLength).toBe(0.18);
+    expect(bird.pairs).toBe(1);
+    expect(checkDesign(bird)).toEqual([]);
+    // Without its tarsus the bird's legs (0.66 m) are too short for the biped's gait.
+    expect(settingsOf(checkDesign({ ...bird, tarsusLength: 0 }))).toEqual(['lowerLength']);
+  });
+
+  it('refuse a third segment longer than the measured share of the leg', () => {
+    const problems = checkDesign({ ...DEFAULT_DESIGN, upperLength: 0.2, lowerLength: 0.2, tarsusLength: 0.2 });
+    expect(settingsOf(problems)).toEqual(['tarsusLength']);
+    expect(problems[0].message).toMatch(/more than 0.3 of the leg/);
   });
 });
 

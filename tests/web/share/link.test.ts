@@ -26,6 +26,7 @@ import {
   toBase64Url,
 } from '../../../web/src/share/link';
 import { schema } from '../fixtures/schema';
+import { mulberry32 as random } from '../../../web/src/random';
 
 /** The module's part, stood in for: the text as JSON, unchanged. */
 const passThrough: GaitNormalizer = async (json) => JSON.parse(json) as GaitFile;
@@ -39,18 +40,6 @@ async function problemOf(hash: string, normalize: GaitNormalizer = passThrough):
     return { problem: (error as GaitError).problem, message: (error as GaitError).message };
   }
   throw new Error(`${hash.slice(0, 60)}… decoded without complaint`);
-}
-
-/** A seeded generator (mulberry32), so a failing random case can be reproduced. */
-function random(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
 }
 
 /** A random valid gait: every parameter anywhere in its bounds, including exactly on them. */

@@ -5,18 +5,7 @@
 import { describe, expect, it } from 'vitest';
 import { checkSimCommand } from '../../../web/src/sim/command-check';
 import { MAX_COORDINATE, MAX_GOAL_SPEED } from '../../../web/src/sim/limits';
-
-/** A seeded generator (mulberry32), so a failing case can be reproduced. */
-function random(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+import { mulberry32 as random } from '../../../web/src/random';
 
 /** Every number inside `value`, found without recursion. */
 function numbersIn(value: unknown): number[] {

@@ -1,9 +1,10 @@
-// Creature files as the page writes them: the "gaitlab-creature" format, version 1, whose one
+// Creature files as the page writes them: the "gaitlab-creature" format, version 2, whose one
 // reader and every range live in native/src/body/creature.h (docs/creatures.md). These types only
 // name its fields for TypeScript; the module judges a file, and refuses it with the field named.
 
 export const CREATURE_FORMAT = 'gaitlab-creature';
-export const CREATURE_FORMAT_VERSION = 1;
+/** The version the page writes; version 1 is version 2 without legs of three segments (both are read). */
+export const CREATURE_FORMAT_VERSION = 2;
 /** Most leg frames a body may have (kMaxCreatureLegFrames, body/creature.h). */
 export const MAX_LEG_FRAMES = 4;
 
@@ -18,6 +19,11 @@ export interface LimbSpec {
   mass: number;
 }
 
+/** A leg's third segment (version 2): a limb below the lower leg, and its hock, which bends the other way to the knee. */
+export interface TarsusSpec extends LimbSpec {
+  hock: { flexion: number; hyperextension: number };
+}
+
 export interface LegPairSpec {
   /** Prefix of the legs' names, may be "". */
   name: string;
@@ -29,6 +35,8 @@ export interface LegPairSpec {
   ankle: { pitch: number; roll: number };
   upper: LimbSpec;
   lower: LimbSpec;
+  /** Legs of three segments only. */
+  tarsus?: TarsusSpec;
   foot: { halfExtents: Triple; forward: number; mass: number; ankleAboveFoot: number };
   colours: { left: string; right: string; foot: string };
 }
@@ -61,7 +69,7 @@ export interface SpineSection {
 
 export interface CreatureFile {
   format: typeof CREATURE_FORMAT;
-  version: typeof CREATURE_FORMAT_VERSION;
+  version: 1 | typeof CREATURE_FORMAT_VERSION;
   name: string;
   /** kg·m² */
   armature: number;
@@ -71,9 +79,9 @@ export interface CreatureFile {
   spine: SpineSection[];
 }
 
-/** A leg's mass: its upper and lower segments and its foot. */
+/** A leg's mass: its upper and lower segments, its tarsus if it has one, and its foot. */
 export function legMass(legs: LegPairSpec): number {
-  return legs.upper.mass + legs.lower.mass + legs.foot.mass;
+  return legs.upper.mass + legs.lower.mass + (legs.tarsus?.mass ?? 0) + legs.foot.mass;
 }
 
 /** The whole body's mass, kg. */
@@ -84,5 +92,5 @@ export function totalMass(file: CreatureFile): number {
 
 /** Its legs' hip height when standing straight (body/creature.cpp's hipHeight), m. */
 export function hipHeight(legs: LegPairSpec): number {
-  return 2 * legs.foot.halfExtents[1] + legs.foot.ankleAboveFoot + legs.lower.length + legs.upper.length;
+  return 2 * legs.foot.halfExtents[1] + legs.foot.ankleAboveFoot + (legs.tarsus?.length ?? 0) + legs.lower.length + legs.upper.length;
 }

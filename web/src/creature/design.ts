@@ -1,5 +1,5 @@
-// The creature designer's model: a handful of settings (leg pairs, leg lengths, body size,
-// masses, knees, colours) turned into a creature file (creature-file.ts; native/src/body/
+// The creature designer's model: a handful of settings (leg pairs, leg lengths and segments, body
+// size, masses, knees, colours) turned into a creature file (creature-file.ts; native/src/body/
 // creature.h), and the checks that refuse a body that cannot work before it is sent. No DOM:
 // the panel (ui/creature-designer.ts) shows it, and tests/web/creature/design.test.ts tests it.
 //
@@ -12,12 +12,14 @@ import {
   CREATURE_FORMAT,
   CREATURE_FORMAT_VERSION,
   MAX_LEG_FRAMES,
+  legMass,
   totalMass,
   type CreatureFile,
   type LegFrameSpec,
   type LegPairSpec,
   type Triple,
 } from './creature-file';
+import { mulberry32 } from '../random';
 
 /** Which way the knees bend. */
 export const KNEE_CHOICES = ['mixed', 'forward', 'backward'] as const;
@@ -31,9 +33,14 @@ export type KneeChoice = (typeof KNEE_CHOICES)[number];
 export interface CreatureDesign {
   /** Leg pairs, which is leg frames: 1 to 4. */
   pairs: number;
-  /** Upper and lower leg, hip to knee and knee to ankle, m. */
+  /** Upper and lower leg, hip to knee and knee to ankle (or to the hock), m. */
   upperLength: number;
   lowerLength: number;
+  /**
+   * A third segment, hock to ankle, m; 0 for legs of two segments. Its hock bends the other way to
+   * the knee, as a bird's or a dog's hind leg (body/creature.h, "tarsus").
+   */
+  tarsusLength: number;
   /** The upper leg's full thickness, m (the lower leg is 6/7 of it, as in the shipped files). */
   legThickness: number;
   /** Body length: centre to centre of neighbouring leg frames, m. */
@@ -68,6 +75,8 @@ export const SETTING_RANGES: Record<NumericSetting, { min: number; max: number; 
   // leg) becomes a few millimetres; the range the checks below were measured over.
   upperLength: { min: 0.1, max: 0.6, step: 0.01, unit: 'm', label: 'upper leg' },
   lowerLength: { min: 0.1, max: 0.6, step: 0.01, unit: 'm', label: 'lower leg' },
+  // 0: two segments. Up to TARSUS_SHARE of the leg (the checks below).
+  tarsusLength: { min: 0, max: 0.3, step: 0.01, unit: 'm', label: 'third segment (0: none)' },
   // The shipped legs are 0.07 m (creatures) and 0.12 m (biped) thick.
   legThickness: { min: 0.02, max: 0.14, step: 0.005, unit: 'm', label: 'leg thickness' },
   // The spider's frames are 0.18 m apart, the quadruped's 0.8 m.
@@ -87,6 +96,7 @@ export const DEFAULT_DESIGN: CreatureDesign = {
   pairs: 3,
   upperLength: 0.22,
   lowerLength: 0.22,
+  tarsusLength: 0,
   legThickness: 0.07,
   frameSpacing: 0.36,
   bodyWidth: 0.2,
@@ -128,6 +138,11 @@ const LOWER_SHARE = 0.3;
 const FOOT_SHARE = 0.1;
 /** The lower leg's thickness over the upper's: 0.03 / 0.035 and the biped's 0.05 / 0.06. */
 const LOWER_THICKNESS = 6 / 7;
+/**
+ * A tarsus's thickness over the lower leg's (the bird's 0.035 / 0.045). A leg of three segments
+ * shares LOWER_SHARE between its lower leg and its tarsus by their lengths (the bird: 3.5 and 1 kg).
+ */
+const TARSUS_THICKNESS = 7 / 9;
 const FOOT_COLOUR = '#3a3a40';
 /**
  * Hips 3 cm above a leg frame's underside (the insect's, the spider's and the biped's): a
@@ -206,6 +221,13 @@ export const LEG_LENGTH_SINGLE = { min: 0.7, max: 1.1 };
  * short segment leaves the knee little to do.
  */
 export const SEGMENT_RATIO = { min: 0.5, max: 2 };
+/**
+ * A third segment's share of the leg, hip to ankle, at most. Measured with the native CLI (30 s at
+ * 0.4 and 0.8 m/s, the tarsus held parallel to the thigh, gait/ik.h): the insect with tarsi of
+ * 0.05, 0.1, 0.2 and 0.3 of its leg, the spider, dragon and quadruped at 0.25 and the biped at 0.25
+ * walked at both speeds; longer ones were not tried.
+ */
+export const TARSUS_SHARE = 0.3;
 
 // ---- Designs to files. ----
 
@@ -234,7 +256,7 @@ const tidy = (x: number) => Math.round(x * 1e6) / 1e6;
 
 /** The leg's length, hip to ankle, m. */
 export function legLength(design: CreatureDesign): number {
-  return design.upperLength + design.lowerLength;
+  return design.upperLength + design.lowerLength + design.tarsusLength;
 }
 
 /** A leg frame's half length along the body, m. */
@@ -339,8 +361,14 @@ export function checkDesign(design: CreatureDesign): DesignProblem[] {
     problems.push({
       setting: length < lengths.min ? 'lowerLength' : 'upperLength',
       message:
-        `legs of ${fmt(length)} m (upper + lower): ${single ? "a single pair walks the biped's gait, which needs" : 'the gait needs'} ` +
+        `legs of ${fmt(length)} m (hip to ankle): ${single ? "a single pair walks the biped's gait, which needs" : 'the gait needs'} ` +
         `${lengths.min}–${lengths.max} m (${length < lengths.min ? 'shorter legs barely move the body' : 'longer legs fall'})`,
+    });
+  }
+  if (design.tarsusLength > TARSUS_SHARE * length) {
+    problems.push({
+      setting: 'tarsusLength',
+      message: `a third segment of ${fmt(design.tarsusLength)} m is more than ${TARSUS_SHARE} of the leg (${fmt(length)} m); longer ones have not been measured to walk`,
     });
   }
   const ratio = design.upperLength / design.lowerLength;
@@ -372,22 +400,34 @@ export function buildFile(design: CreatureDesign, name = 'designed'): CreatureFi
   const n = design.pairs;
   const names = FRAME_NAMES[n] ?? FRAME_NAMES[3];
   const scale = legLength(design) / REFERENCE_LEG;
-  const legMass = (design.frameMass * design.legShare) / (1 - design.legShare) / 2;
+  const massOfLeg = (design.frameMass * design.legShare) / (1 - design.legShare) / 2;
   const halfWidth = design.bodyWidth / 2;
   const halfHeight = design.bodyHeight / 2;
   const halfLength = frameHalfLength(design);
+  // The lower leg's part of LOWER_SHARE: all of it, or with a tarsus its share by length.
+  const lowerShare = design.lowerLength / (design.lowerLength + design.tarsusLength);
   const legs = (k: number): LegPairSpec => ({
     name: names[k],
     hipSpacing: tidy(design.hipSpacing),
     hip: structuredClone(n === 1 ? BIPED_HIP_RANGE : HIP_RANGE),
     knee: { points: kneePoints(design, k), flexion: KNEE_FLEXION, hyperextension: KNEE_HYPEREXTENSION },
     ankle: { pitch: ANKLE_PITCH, roll: ANKLE_ROLL },
-    upper: { length: tidy(design.upperLength), halfThickness: tidy(design.legThickness / 2), mass: tidy(UPPER_SHARE * legMass) },
-    lower: { length: tidy(design.lowerLength), halfThickness: tidy((LOWER_THICKNESS * design.legThickness) / 2), mass: tidy(LOWER_SHARE * legMass) },
+    upper: { length: tidy(design.upperLength), halfThickness: tidy(design.legThickness / 2), mass: tidy(UPPER_SHARE * massOfLeg) },
+    lower: { length: tidy(design.lowerLength), halfThickness: tidy((LOWER_THICKNESS * design.legThickness) / 2), mass: tidy(lowerShare * LOWER_SHARE * massOfLeg) },
+    ...(design.tarsusLength > 0
+      ? {
+          tarsus: {
+            length: tidy(design.tarsusLength),
+            halfThickness: tidy((TARSUS_THICKNESS * LOWER_THICKNESS * design.legThickness) / 2),
+            mass: tidy((1 - lowerShare) * LOWER_SHARE * massOfLeg),
+            hock: { flexion: KNEE_FLEXION, hyperextension: KNEE_HYPEREXTENSION },
+          },
+        }
+      : {}),
     foot: {
       halfExtents: REFERENCE_FOOT.halfExtents.map((h) => tidy(h * scale)) as Triple,
       forward: tidy(REFERENCE_FOOT.forward * scale),
-      mass: tidy(FOOT_SHARE * legMass),
+      mass: tidy(FOOT_SHARE * massOfLeg),
       ankleAboveFoot: tidy(REFERENCE_FOOT.ankleAboveFoot * scale),
     },
     colours: { left: design.leftColour, right: design.rightColour, foot: FOOT_COLOUR },
@@ -427,24 +467,12 @@ export function designCreature(design: CreatureDesign, name?: string): DesignRes
   return { file: buildFile(design, name), problems };
 }
 
-/** A seeded generator (mulberry32): the same seed, the same bodies. */
-function mulberry32(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
-
 /** Most draws randomDesign makes before it gives up (none of 20 seeds needs more than a few hundred). */
 const MAX_DRAWS = 100_000;
 
 /**
- * A random body within the designer's limits: every numeric setting drawn uniformly over its
- * slider's range (on the slider's steps), the knees at random, drawn again until the design
+ * A random body within the designer's limits: every numeric setting but the third leg segment
+ * drawn uniformly over its slider's range (on the slider's steps), the knees at random, drawn again until the design
  * passes every check. The same seed gives the same body. What "random bodies" means where the
  * learning benchmark (bench/learning.mjs) reports how many of them learn to walk.
  */
@@ -453,6 +481,9 @@ export function randomDesign(seed: number): CreatureDesign {
   for (let draw = 0; draw < MAX_DRAWS; draw++) {
     const design: CreatureDesign = { ...DEFAULT_DESIGN };
     for (const [key, r] of Object.entries(SETTING_RANGES) as [NumericSetting, (typeof SETTING_RANGES)[NumericSetting]][]) {
+      // Legs of two segments: the population the learning benchmark measured, drawn before legs
+      // could have a third (drawing one would change every seed's body).
+      if (key === 'tarsusLength') continue;
       const steps = Math.round((r.max - r.min) / r.step);
       design[key] = Number((r.min + Math.floor(next() * (steps + 1)) * r.step).toFixed(6));
     }
@@ -478,12 +509,13 @@ export function designFromFile(file: CreatureFile): CreatureDesign {
   const mean = (f: (frame: LegFrameSpec) => number) => frames.reduce((sum, frame) => sum + f(frame), 0) / n;
   const legs = frames[0].legs;
   const frameMass = mean((f) => f.mass);
-  const legPairMass = mean((f) => 2 * (f.legs.upper.mass + f.legs.lower.mass + f.legs.foot.mass));
+  const legPairMass = mean((f) => 2 * legMass(f.legs));
   const points = frames.map((f) => f.legs.knee.points);
   return {
     pairs: n,
     upperLength: legs.upper.length,
     lowerLength: legs.lower.length,
+    tarsusLength: legs.tarsus?.length ?? 0,
     legThickness: 2 * legs.upper.halfThickness,
     frameSpacing: n > 1 ? (frames[0].z - frames[n - 1].z) / (n - 1) : DEFAULT_DESIGN.frameSpacing,
     bodyWidth: 2 * mean((f) => f.halfExtents[0]),

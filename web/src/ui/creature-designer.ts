@@ -22,7 +22,7 @@ import type { CharacterStatus, SceneCommand } from '../sim/protocol';
 import type { OptimizeForm } from '../optimize/options';
 
 /** The shipped creatures a design can start from (public/creatures/NAME.json). */
-export const DESIGN_PRESETS = ['insect', 'spider', 'dragon', 'quadruped', 'biped'] as const;
+export const DESIGN_PRESETS = ['insect', 'spider', 'dragon', 'bird', 'quadruped', 'biped'] as const;
 export type DesignPreset = (typeof DESIGN_PRESETS)[number];
 
 /** A pause in the editing this long (ms) sends the body: a slider dragged respawns once, not 30 times. */
@@ -113,10 +113,12 @@ export class CreatureDesigner {
     };
     number(f, 'pairs');
     const legs = f.addFolder('Legs');
-    for (const key of ['upperLength', 'lowerLength', 'legThickness', 'hipSpacing', 'legShare'] as const) number(legs, key);
+    for (const key of ['upperLength', 'lowerLength', 'tarsusLength', 'legThickness', 'hipSpacing', 'legShare'] as const) number(legs, key);
+    this.controls.get('tarsusLength')!.domElement.title =
+      'a third segment below the lower leg, whose joint (the hock) bends the other way to the knee, as a bird\'s or a dog\'s hind leg; 0: legs of two segments';
     this.controls.set('knees', legs.add(v, 'knees', [...KNEE_CHOICES]).name('knees').onChange(() => this.edited()));
     this.controls.get('knees')!.domElement.title =
-      'mixed: the front half bend backward (as a dog\'s front legs), the rest forward; forward: as a human\'s; backward: as a bird\'s';
+      'mixed: the front half bend backward (as a dog\'s front legs), the rest forward; forward: as a human\'s; backward: all of them (a bird\'s knee points forward: its backward joint is the hock of a third segment)';
     this.controls.get('legShare')!.domElement.title = 'the legs\' share of a leg frame with its two legs, by mass';
     const body = f.addFolder('Body');
     for (const key of ['frameSpacing', 'bodyWidth', 'bodyHeight', 'frameMass'] as const) number(body, key);

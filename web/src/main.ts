@@ -129,6 +129,7 @@ const panel = new ControlPanel({
 const creatureUrl = (name: string) => new URL(`${import.meta.env.BASE_URL}creatures/${name}.json`, location.href);
 const designer = new CreatureDesigner(panel.gui, {
   send,
+  spawn: (command) => (client ? client.spawnCreature(command) : Promise.reject(new Error('the simulation has not started'))),
   select,
   creatureUrl,
   // "Teach it to walk": the optimize panel searches a gait for the designed body.
@@ -388,10 +389,7 @@ if (!window.crossOriginIsolated) {
       panel.setTerrain(grid.kind);
     },
     onError: (message) => showError('The simulation stopped', message),
-    onCommandError: (message) => {
-      designer.commandError(message);
-      overlay.message(message, 'problem');
-    },
+    onCommandError: (message) => overlay.message(message, 'problem'),
   });
 
   const activeStage = stage;

@@ -66,6 +66,8 @@ describe('checkSimCommand', () => {
     expect(checkSimCommand({ type: 'step' })).toEqual({ ok: true, command: { type: 'step' } });
     const patch = { type: 'patchParams', id: 4, character: 'biped', patch: { 'gains.kp': 3, 'legFrame.pitch': [0, 1, 2, 3] }, request: 9 };
     expect(checkSimCommand({ type: 'scene', command: patch })).toEqual({ ok: true, command: { type: 'scene', command: patch } });
+    const spawn = { type: 'spawnCreature', json: '{}', x: 1, z: -2, heading: 0, speed: 0.4, request: 12 };
+    expect(checkSimCommand({ type: 'scene', command: spawn })).toEqual({ ok: true, command: { type: 'scene', command: spawn } });
   });
 
   it('refuses each bad number naming it', () => {
@@ -86,6 +88,7 @@ describe('checkSimCommand', () => {
     expect(scene({ type: 'add', kind: 'biped', count: 2.5 })).toMatchObject({ ok: false, error: expect.stringMatching(/count: 2.5 is not a whole number/) });
     expect(scene({ type: 'patchParams', id: 'all', character: 'biped', patch: { a: [1, NaN] } })).toMatchObject({ ok: false, error: expect.stringMatching(/a\[1\]: NaN/) });
     expect(checkSimCommand({ type: 'getParams', request: 5, id: 'x' })).toMatchObject({ ok: false, request: 5 });
+    expect(scene({ type: 'spawnCreature', json: '{}', x: 0, z: 0, heading: 0, speed: 0.4, request: -1 })).toMatchObject({ ok: false, error: expect.stringMatching(/request: -1 is outside/) });
     expect(checkSimCommand({ type: 'normalize', request: 1, json: 'x'.repeat(300 * 1024) })).toMatchObject({ ok: false, request: 1, error: expect.stringMatching(/longer than 262144 bytes/) });
     expect(checkSimCommand(null)).toMatchObject({ ok: false });
     expect(checkSimCommand({ type: 'toString' })).toMatchObject({ ok: false, error: expect.stringMatching(/not a command/) });

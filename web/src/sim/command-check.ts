@@ -176,6 +176,7 @@ const SCENE_RULES: Record<SceneCommand['type'], (c: Fields) => SceneCommand> = {
     heading: number(c.heading, 'heading', -MAX_HEADING, MAX_HEADING),
     speed: number(c.speed, 'speed', -MAX_GOAL_SPEED, MAX_GOAL_SPEED),
     ...(c.gait !== undefined ? { gait: jsonText(c.gait, 'gait') } : {}),
+    ...(c.request !== undefined ? { request: request(c.request) } : {}),
   }),
   autoReset: (c) => ({ type: 'autoReset', seconds: number(c.seconds, 'seconds', 0, MAX_AUTO_RESET) }),
   setParams: (c) => ({ type: 'setParams', id: idOrAll(c.id), character: character(c.character), json: jsonText(c.json, 'json') }),

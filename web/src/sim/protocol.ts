@@ -72,9 +72,11 @@ export type SceneCommand =
    * A character whose body is a creature file's text (public/creatures/*.json) standing at
    * (x, z), facing `heading`, walking at `speed` m/s (gl_sim_spawn_creature), with the gait file
    * `gait` of its kind if given (else the gait its body walks when spawned). A refused file or
-   * gait is said in a `commandError` naming the field; a refused gait removes the creature again.
+   * gait is said naming the field; a refused gait removes the creature again. With `request`,
+   * answered by a `spawned` event (the new character's id, or the refusal); without, a refusal is
+   * a `commandError`.
    */
-  | { type: 'spawnCreature'; json: string; x: number; z: number; heading: number; speed: number; gait?: string }
+  | { type: 'spawnCreature'; json: string; x: number; z: number; heading: number; speed: number; gait?: string; request?: number }
   /** Characters down for this long are reset automatically; 0 = never. */
   | { type: 'autoReset'; seconds: number }
   /**
@@ -213,6 +215,8 @@ export type SimEvent =
    * refusal (the command and the parameter named).
    */
   | { type: 'patched'; request: number; accepted: ParamPatch | null; error: string | null }
+  /** The answer to a `spawnCreature` with a request: the new character's id, or why there is none. */
+  | { type: 'spawned'; request: number; id: number | null; error: string | null }
   /**
    * The ground of scene `generation` changed (or the scene is new): its grid and samples, to draw
    * it exactly as the physics has it. Sent after `ready` and after every setTerrain.

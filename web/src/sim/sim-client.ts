@@ -1,6 +1,6 @@
 // Main-thread side of the sim worker: starts it, sends typed commands, and keeps the newest
 // statistics and render-buffer reader. It never steps anything itself (docs/design.md, data flow).
-import { errorMessage, type CharacterType, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
+import { errorMessage, type CharacterType, type SceneCommand, type SimCommand, type SimEvent, type SimOptions, type SimStats } from './protocol';
 import type { ParamPatch, SpeedKeys } from '../share/gait-file';
 import { RenderBufferReader } from './render-buffer';
 import type { TerrainGrid } from './terrain-grid';
@@ -75,6 +75,14 @@ export class SimClient {
     );
   }
 
+  /**
+   * A creature (the spawnCreature command, its request filled in): resolves with the new
+   * character's id, rejects with the refusal (the file's field named, or the page full).
+   */
+  spawnCreature(spawn: Omit<Extract<SceneCommand, { type: 'spawnCreature' }>, 'type' | 'request'>): Promise<number> {
+    return this.request((request) => ({ type: 'scene', command: { type: 'spawnCreature', ...spawn, request } })).then(Number);
+  }
+
   private request(make: (request: number) => SimCommand): Promise<string> {
     const request = this.nextRequest++;
     return new Promise((resolve, reject) => {
@@ -133,6 +141,14 @@ export class SimClient {
         if (!pending) return;
         if (event.accepted !== null) pending.resolve(JSON.stringify(event.accepted));
         else pending.reject(new Error(event.error ?? 'the edit was refused'));
+        return;
+      }
+      case 'spawned': {
+        const pending = this.requests.get(event.request);
+        this.requests.delete(event.request);
+        if (!pending) return;
+        if (event.id !== null) pending.resolve(String(event.id));
+        else pending.reject(new Error(event.error ?? 'the creature was refused'));
         return;
       }
       case 'terrain':

@@ -400,13 +400,30 @@ class WorkerScene {
         return;
       }
       case 'spawnCreature': {
+        // The new character's id, or the refusal: to the request if there is one.
+        const answer = (id: number | null, error: string | null) => {
+          if (command.request !== undefined) post({ type: 'spawned', request: command.request, id, error });
+          else if (error !== null) post({ type: 'commandError', message: error });
+        };
         if (sim.characterCount >= MAX_CHARACTERS) {
-          post({ type: 'commandError', message: `the crowd is at its limit: the page holds at most ${MAX_CHARACTERS} characters` });
+          answer(null, `the crowd is at its limit: the page holds at most ${MAX_CHARACTERS} characters`);
           return;
         }
-        const id = sim.spawnCreature(command.json, command.x, command.z, command.heading);
-        if (command.gait !== undefined && !this.giveGait(sim, id, command.gait, 'the creature was not added')) return;
+        let id: number;
+        try {
+          id = sim.spawnCreature(command.json, command.x, command.z, command.heading);
+        } catch (error) {
+          if (!(error instanceof GaitlabError)) throw error;
+          answer(null, `the command 'spawnCreature' was refused: ${error.detail}`);
+          return;
+        }
+        const refused = command.gait === undefined ? null : this.giveGait(sim, id, command.gait, 'the creature was not added');
+        if (refused !== null) {
+          answer(null, refused);
+          return;
+        }
         sim.setGoal(id, command.speed, 0);
+        answer(id, null);
         return;
       }
       case 'autoReset':
@@ -465,21 +482,20 @@ class WorkerScene {
 
   /**
    * Gives character `id` the gait file `json` (of its own kind, which the module checks); a
-   * refused gait removes the character and is said as "`what`: FIELD: WHAT". Returns whether it
-   * was given.
+   * refused gait removes the character. Returns null when it was given, else the refusal as
+   * "`what`: FIELD: WHAT".
    */
-  private giveGait(sim: Simulation, id: number, json: string, what: string): boolean {
+  private giveGait(sim: Simulation, id: number, json: string, what: string): string | null {
     const info = sim.characterInfo();
     let kind = -1;
     for (let o = 0; o < info.length; o += INFO.fields) if (info[o + INFO.id] === id) kind = info[o + INFO.kind];
     try {
       sim.setParams(id, kind, json);
-      return true;
+      return null;
     } catch (error) {
       if (!(error instanceof GaitlabError)) throw error;
       sim.removeCharacter(id);
-      post({ type: 'commandError', message: `${what}: ${error.detail}` });
-      return false;
+      return `${what}: ${error.detail}`;
     }
   }
 
@@ -496,7 +512,11 @@ class WorkerScene {
       post({ type: 'commandError', message: `the learner was not added: ${error.code === ERR.full ? 'the scene is full' : error.detail}` });
       return;
     }
-    if (!this.giveGait(sim, id, command.json, 'the learner was not added')) return;
+    const refused = this.giveGait(sim, id, command.json, 'the learner was not added');
+    if (refused !== null) {
+      post({ type: 'commandError', message: refused });
+      return;
+    }
     sim.setGoal(id, command.speed, command.turn);
     this.learner = { id, command, since: sim.time };
     this.learnerChanged = true;
@@ -789,10 +809,16 @@ function refuseMessage(message: unknown, error: string, request: number | undefi
     return;
   }
   const scene = type === 'scene' ? (message as { command?: { type?: unknown; request?: unknown } }).command : undefined;
-  const patchRequest = scene?.type === 'patchParams' ? scene.request : undefined;
-  if (typeof patchRequest === 'number' && Number.isInteger(patchRequest) && patchRequest >= 0) {
-    post({ type: 'patched', request: patchRequest, accepted: null, error });
-    return;
+  const sceneRequest = scene?.request;
+  if (typeof sceneRequest === 'number' && Number.isInteger(sceneRequest) && sceneRequest >= 0) {
+    if (scene?.type === 'patchParams') {
+      post({ type: 'patched', request: sceneRequest, accepted: null, error });
+      return;
+    }
+    if (scene?.type === 'spawnCreature') {
+      post({ type: 'spawned', request: sceneRequest, id: null, error: `a message was refused: ${error}` });
+      return;
+    }
   }
   post({ type: 'commandError', message: `a message was refused: ${error}` });
 }

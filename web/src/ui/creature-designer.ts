@@ -39,15 +39,15 @@ const BEHIND_CROWD = 2;
 const LOOP_DISTANCE = 8;
 /** Down this long (s of simulated time, the worker's fallenSeconds), it starts over: falling is shown, not kept. */
 const RESTART_FALLEN = 3;
-/** A spawned body found within this of where it was asked for (m, its root's centre) is the preview. */
-const FOUND_WITHIN = 1.5;
 /** lil-gui's folder opening animation, ms (its CSS transition is 0.3 s), with a margin. */
 const OPENING_MS = 400;
-/** What a refused spawn's commandError starts with (sim.worker.ts says every refused command so). */
+/** What a refused spawn's answer starts with when the module refused the file (sim.worker.ts). */
 const SPAWN_REFUSED = "the command 'spawnCreature' was refused: ";
 
 export interface DesignerHost {
   send(command: SceneCommand): void;
+  /** Spawns a creature (SimClient.spawnCreature): resolves with its id, rejects with the refusal. */
+  spawn(command: Omit<Extract<SceneCommand, { type: 'spawnCreature' }>, 'type' | 'request'>): Promise<number>;
   /** Selects a character; the camera follows the selection. */
   select(id: number | null): void;
   /** Where the shipped creature file NAME is served. */
@@ -59,13 +59,12 @@ export interface DesignerHost {
   teach(file: CreatureFile, values?: OptimizeForm): Promise<unknown>;
 }
 
-/** The spawn the designer waits to see in the worker's reports. */
+/** The spawn the designer waits for the worker to answer. */
 interface PendingSpawn {
+  /** Told apart from a spawn it replaced (one answered after it is dropped). */
+  serial: number;
   x: number;
   z: number;
-  legs: number;
-  /** Characters that existed before it: the new one is not among them. */
-  before: Set<number>;
 }
 
 export class CreatureDesigner {
@@ -80,6 +79,9 @@ export class CreatureDesigner {
   /** Where the preview started (m), for its loop. */
   private start: { x: number; z: number } | null = null;
   private pending: PendingSpawn | null = null;
+  private spawns = 0;
+  /** Counts scenes (Reset): a spawn answered after a new scene began is not removed from it. */
+  private scene = 0;
   /** The worker's newest character list; null until the first report of a scene. */
   private characters: CharacterStatus[] | null = null;
   /** The module's refusal of the last body sent, if it refused it. */
@@ -207,20 +209,7 @@ export class CreatureDesigner {
     const first = this.characters === null;
     this.characters = characters;
     if (first && this.values.show) this.respawn();
-    if (this.pending) {
-      const p = this.pending;
-      const found = characters.find(
-        (c) => !p.before.has(c.id) && c.legs === p.legs && Math.hypot(c.position[0] - p.x, c.position[2] - p.z) < FOUND_WITHIN,
-      );
-      if (found) {
-        this.previewId = found.id;
-        this.start = { x: p.x, z: p.z };
-        this.pending = null;
-        this.showStatus();
-      }
-      return;
-    }
-    if (this.previewId === null) return;
+    if (this.pending || this.previewId === null) return;
     const me = characters.find((c) => c.id === this.previewId);
     if (!me) {
       // Removed from outside (the Delete key, the panel): the designer stops showing it.
@@ -241,20 +230,37 @@ export class CreatureDesigner {
     this.previewId = null;
     this.pending = null;
     this.characters = null;
+    this.scene++;
   }
 
   /**
-   * A command the worker refused. A refused spawn while one is awaited is the module's verdict
-   * on the body sent: it is shown here (the page shows it too). Returns whether it was one.
+   * Sends the body and waits for the worker's answer: its id makes it the preview (the worker's
+   * reports after the answer all have it), a refusal is the module's verdict on the body, shown
+   * here. An answer to a spawn since replaced is dropped, and that character removed.
    */
-  commandError(message: string): boolean {
-    if (!this.pending) return false;
-    const spawn = message.startsWith(SPAWN_REFUSED);
-    if (!spawn && !/crowd is at its limit/.test(message)) return false;
-    this.refusal = `the module refused the body: ${spawn ? message.slice(SPAWN_REFUSED.length) : message}`;
-    this.pending = null;
-    this.showStatus();
-    return true;
+  private spawn(file: CreatureFile, x: number, z: number): void {
+    const pending: PendingSpawn = { serial: ++this.spawns, x, z };
+    const scene = this.scene;
+    this.pending = pending;
+    this.host.spawn({ json: JSON.stringify(file), x, z, heading: 0, speed: this.values.previewSpeed }).then(
+      (id) => {
+        if (this.pending !== pending) {
+          if (this.scene === scene) this.host.send({ type: 'remove', id });
+          return;
+        }
+        this.pending = null;
+        this.previewId = id;
+        this.start = { x, z };
+        this.showStatus();
+      },
+      (error: unknown) => {
+        if (this.pending !== pending) return;
+        const message = error instanceof Error ? error.message : String(error);
+        this.pending = null;
+        this.refusal = `the module refused the body: ${message.startsWith(SPAWN_REFUSED) ? message.slice(SPAWN_REFUSED.length) : message}`;
+        this.showStatus();
+      },
+    );
   }
 
   private name(): string {
@@ -299,9 +305,8 @@ export class CreatureDesigner {
     const x = others.length === 0 ? 0 : Math.max(...others.map((c) => c.position[0])) + BESIDE_CROWD;
     const z = others.length === 0 ? -BEHIND_CROWD : others.reduce((s, c) => s + c.position[2], 0) / others.length - BEHIND_CROWD;
     this.previewId = null;
-    this.pending = { x, z, legs: 2 * file.legFrames.length, before: new Set(others.map((c) => c.id)) };
     this.refusal = null;
-    this.host.send({ type: 'spawnCreature', json: JSON.stringify(file), x, z, heading: 0, speed: this.values.previewSpeed });
+    this.spawn(file, x, z);
     this.showStatus();
   }
 

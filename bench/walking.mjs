@@ -12,7 +12,8 @@
 // gait file to measure instead of the preset: walking-<file name>.{json,md}). With --creature,
 // creature files (public/creatures/*.json, body/creature.h) instead of the two characters, each
 // under its file's name and with the gait `gaitlab walk --creature` gives it: the walking
-// criteria only, at the quadruped's speeds (walking-creatures.{json,md}). With --only, the
+// criteria only, at the quadruped's speeds and turns (the biped's for a body of one pair of legs)
+// (walking-creatures.{json,md}). With --only, the
 // sections run are measured afresh and merged into the results already there (each section says
 // when and at which commit it was measured), so one part can be re-measured while iterating.
 // --jobs runs that many `gaitlab walk` processes at once.
@@ -119,7 +120,12 @@ const GOALS = {
   biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }, { speed: 1.0, turn: 0.5 }, { speed: 1.0, turn: -0.5 }], top: 2.5, sweepTo: 2.9, cruise: 0.5 },
   quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }], top: 2.5, sweepTo: 4.5, cruise: 0.4 },
 };
-for (const name of Object.keys(creatures)) GOALS[name] = { speeds: GOALS.quadruped.speeds, turns: GOALS.quadruped.turns };
+// A creature walks the goals of the character its legs make it most like: a single pair (the
+// bird) the biped's, more the quadruped's.
+for (const [name, file] of Object.entries(creatures)) {
+  const like = JSON.parse(readFileSync(file, 'utf8')).legFrames.length === 1 ? GOALS.biped : GOALS.quadruped;
+  GOALS[name] = { speeds: like.speeds, turns: like.turns };
+}
 const PUSHES = [2.5, 5, 7.5, 10, 15, 20, 25, 30, 40, 50, 60, 70, 80];  // N·s at the leg frame
 // How long a push lasts, s: held 0.2 s (a push, as the literature measures it), or 0 (one step).
 const PUSH_DURATIONS = [0.2, 0];

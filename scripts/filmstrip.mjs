@@ -51,9 +51,11 @@ if (args.creature !== undefined) {
   if (args.type !== undefined || args.gait || args.patch || args.params) usage('--creature takes none of --type, --gait, --patch, --params');
   if (!fs.existsSync(path.join(repoDir, 'public', 'creatures', `${args.creature}.json`))) usage(`--creature: no public/creatures/${args.creature}.json`);
 } else if (args.type !== 'biped' && args.type !== 'quadruped') usage('--type must be biped or quadruped');
-// A creature is seen and framed as the quadruped is.
+// A creature is seen and framed as the character its legs make it most like: a single pair (the
+// bird) as the biped, more as the quadruped.
 const creature = args.creature;
-const view = creature ? 'quadruped' : args.type;
+const creatureFrames = creature ? JSON.parse(fs.readFileSync(path.join(repoDir, 'public', 'creatures', `${creature}.json`), 'utf8')).legFrames.length : 0;
+const view = creature ? (creatureFrames === 1 ? 'biped' : 'quadruped') : args.type;
 const count = (name, min, max) => {
   const v = Number(args[name]);
   if (!Number.isInteger(v) || v < min || v > max) usage(`--${name} must be an integer in [${min}, ${max}]`);

@@ -76,7 +76,7 @@ export const SETTING_RANGES: Record<NumericSetting, { min: number; max: number; 
   upperLength: { min: 0.1, max: 0.6, step: 0.01, unit: 'm', label: 'upper leg' },
   lowerLength: { min: 0.1, max: 0.6, step: 0.01, unit: 'm', label: 'lower leg' },
   // 0: two segments. Up to TARSUS_SHARE of the leg (the checks below).
-  tarsusLength: { min: 0, max: 0.3, step: 0.01, unit: 'm', label: 'third segment (0: none)' },
+  tarsusLength: { min: 0, max: 0.3, step: 0.01, unit: 'm', label: 'third segment' },
   // The shipped legs are 0.07 m (creatures) and 0.12 m (biped) thick.
   legThickness: { min: 0.02, max: 0.14, step: 0.005, unit: 'm', label: 'leg thickness' },
   // The spider's frames are 0.18 m apart, the quadruped's 0.8 m.

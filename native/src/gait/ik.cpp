@@ -89,11 +89,8 @@ TwoLinkIk solveTwoLinkIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& targ
 LegIk solveLegIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& target, double thigh, double shin,
                  double tarsus, const Eigen::Vector3d& bendDir) {
   LegIk r;
-  r.chain = solveTwoLinkIk(hip, target, thigh + tarsus, shin, bendDir);
-  r.thighDir = r.chain.thighDir;
-  r.shinDir = r.chain.shinDir;
-  r.ankleLimb = tarsus > 0 ? r.chain.thighDir : r.chain.shinDir;
-  r.kneeFlexion = r.chain.kneeFlexion;
+  static_cast<TwoLinkIk&>(r) = solveTwoLinkIk(hip, target, thigh + tarsus, shin, bendDir);
+  r.ankleLimb = tarsus > 0 ? r.thighDir : r.shinDir;
   return r;
 }
 

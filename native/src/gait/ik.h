@@ -26,13 +26,11 @@ struct TwoLinkIk {
 TwoLinkIk solveTwoLinkIk(const Eigen::Vector3d& hip, const Eigen::Vector3d& target, double thigh,
                          double shin, const Eigen::Vector3d& bendDir);
 
-// A leg of two or three segments (body::Leg): hip → knee → [hock →] ankle.
-struct LegIk {
-  TwoLinkIk chain;             // the two-link solution below (for two segments, the leg itself)
-  Eigen::Vector3d thighDir;    // unit, hip → knee
-  Eigen::Vector3d shinDir;     // unit, knee → hock (two segments: knee → ankle)
-  Eigen::Vector3d ankleLimb;   // unit, the direction of the segment the foot hangs from
-  double kneeFlexion;          // 0 = straight; a hock bends as far the other way
+// A leg of two or three segments (body::Leg): hip → knee → [hock →] ankle. The two-link solution
+// of the chain (for three segments its knee and foot are the virtual chain's, thigh + tarsus long),
+// and the direction of the segment the foot hangs from.
+struct LegIk : TwoLinkIk {
+  Eigen::Vector3d ankleLimb;  // unit: the shin's (two segments) or the tarsus's (= thighDir)
 };
 
 // Solves a leg for an ankle target. Two segments (tarsus = 0): solveTwoLinkIk, bit for bit. Three:

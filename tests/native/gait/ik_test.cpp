@@ -166,7 +166,7 @@ TEST(GaitIk, ALegOfThreeSegmentsReachesItsTargetAsAPantograph) {
   for (int i = 0; i < 200; ++i) {
     const Eigen::Vector3d target = hip + Eigen::Vector3d(0.3 * u(rng), -0.45 - 0.3 * std::abs(u(rng)), 0.3 * u(rng));
     const LegIk ik = solveLegIk(hip, target, thigh, shin, tarsus, forward);
-    ASSERT_TRUE(ik.chain.reachable) << i;
+    ASSERT_TRUE(ik.reachable) << i;
     const Eigen::Vector3d knee = hip + thigh * ik.thighDir;
     const Eigen::Vector3d hock = knee + shin * ik.shinDir;
     const Eigen::Vector3d ankle = hock + tarsus * ik.ankleLimb;

@@ -233,5 +233,8 @@ describe('random designs', () => {
     expect(randomDesign(7)).toEqual(designs[6]);
     // Every number of leg pairs turns up among 20.
     expect(new Set(designs.map((d) => d.pairs)).size).toBeGreaterThan(1);
+    // Legs of two segments and of three both turn up.
+    expect(designs.some((d) => d.tarsusLength === 0)).toBe(true);
+    expect(designs.some((d) => d.tarsusLength > 0)).toBe(true);
   });
 });

@@ -471,21 +471,22 @@ export function designCreature(design: CreatureDesign, name?: string): DesignRes
 const MAX_DRAWS = 100_000;
 
 /**
- * A random body within the designer's limits: every numeric setting but the third leg segment
- * drawn uniformly over its slider's range (on the slider's steps), the knees at random, drawn again until the design
- * passes every check. The same seed gives the same body. What "random bodies" means where the
- * learning benchmark (bench/learning.mjs) reports how many of them learn to walk.
+ * A random body within the designer's limits: every numeric setting drawn uniformly over its
+ * slider's range (on the slider's steps), the knees at random, drawn again until the design passes
+ * every check. The third leg segment is a fair coin first: none, or a length drawn the same way
+ * over the slider's steps above 0 (drawn over the whole slider, 0 would come up once in 31 and
+ * nearly every body would have legs of three segments). The same seed gives the same body. What
+ * "random bodies" means where the learning benchmark (bench/learning.mjs) reports how many of
+ * them learn to walk.
  */
 export function randomDesign(seed: number): CreatureDesign {
   const next = mulberry32(seed);
+  const onStep = (r: { min: number; max: number; step: number }, from: number) =>
+    Number((from + Math.floor(next() * (Math.round((r.max - from) / r.step) + 1)) * r.step).toFixed(6));
   for (let draw = 0; draw < MAX_DRAWS; draw++) {
     const design: CreatureDesign = { ...DEFAULT_DESIGN };
     for (const [key, r] of Object.entries(SETTING_RANGES) as [NumericSetting, (typeof SETTING_RANGES)[NumericSetting]][]) {
-      // Legs of two segments: the population the learning benchmark measured, drawn before legs
-      // could have a third (drawing one would change every seed's body).
-      if (key === 'tarsusLength') continue;
-      const steps = Math.round((r.max - r.min) / r.step);
-      design[key] = Number((r.min + Math.floor(next() * (steps + 1)) * r.step).toFixed(6));
+      design[key] = key === 'tarsusLength' ? (next() < 0.5 ? 0 : onStep(r, r.min + r.step)) : onStep(r, r.min);
     }
     design.knees = KNEE_CHOICES[Math.floor(next() * KNEE_CHOICES.length)];
     if (checkDesign(design).length === 0) return design;

@@ -55,6 +55,13 @@ export interface CreatureDesign {
   /** Each hip from the midline, m. */
   hipSpacing: number;
   knees: KneeChoice;
+  /** How far each knee (and hock) bends from straight, at most, rad. */
+  kneeFlexion: number;
+  /**
+   * How far each hip swings forward and back, at most, rad. A single pair keeps the biped's
+   * shape of range, further forward than back (2.0 and 0.7 rad at 1.2).
+   */
+  hipSwing: number;
   /** "#rrggbb": the leg frames, the spine, the left legs, the right legs. */
   bodyColour: string;
   spineColour: string;
@@ -89,6 +96,10 @@ export const SETTING_RANGES: Record<NumericSetting, { min: number; max: number; 
   legShare: { min: 0.05, max: 0.7, step: 0.01, unit: '', label: 'leg mass share' },
   // Hips at most 0.3 m out: beyond any shipped body's (0.09–0.12 m) and the bodyWidth's half.
   hipSpacing: { min: 0.02, max: 0.3, step: 0.005, unit: 'm', label: 'hip spacing' },
+  // Joint ranges: the sliders reach below what walks (the checks say why) and up to a knee
+  // folded to 160° and a hip swinging 86° each way. The module reads up to π.
+  kneeFlexion: { min: 0.5, max: 2.8, step: 0.05, unit: 'rad', label: 'knee bends up to' },
+  hipSwing: { min: 0.3, max: 1.5, step: 0.05, unit: 'rad', label: 'hip swings up to' },
 };
 
 /** The insect's proportions (public/creatures/insect.json, its frames' mean mass): what the designer starts from. */
@@ -105,6 +116,8 @@ export const DEFAULT_DESIGN: CreatureDesign = {
   legShare: 12 / 37,
   hipSpacing: 0.1,
   knees: 'mixed',
+  kneeFlexion: 2.4,
+  hipSwing: 1.2,
   bodyColour: '#4a3b2a',
   spineColour: '#6b5338',
   leftColour: '#4e8fd9',
@@ -115,10 +128,12 @@ export const DEFAULT_DESIGN: CreatureDesign = {
 
 /** kg·m², as every shipped file. */
 const ARMATURE = 0.05;
-/** The creatures' hip ranges; a single pair takes the biped's, which its preset gait was tuned with. */
+/**
+ * The creatures' hip ranges at a swing of 1.2 rad (DEFAULT_DESIGN.hipSwing); a single pair takes
+ * the biped's, which its preset gait was tuned with. The swing scales the flexion (x) limits.
+ */
 const HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-1.2, -0.3, -0.35], upper: [1.2, 0.3, 0.35] };
 const BIPED_HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-2.0, -0.6, -0.5], upper: [0.7, 0.6, 0.5] };
-const KNEE_FLEXION = 2.4;
 const KNEE_HYPEREXTENSION = 0.05;
 const ANKLE_PITCH = 0.9;
 const ANKLE_ROLL = 0.4;
@@ -127,8 +142,19 @@ const ANKLE_ROLL = 0.4;
  * and the ankle's pivot above it. A design's foot is these scaled by its leg length over this
  * one, as the derived gait scales its steps (dynamic similarity, Alexander and Jayes 1983).
  */
-const REFERENCE_LEG = 0.44;
-const REFERENCE_FOOT = { halfExtents: [0.035, 0.02, 0.05] as Triple, forward: 0.015, ankleAboveFoot: 0.005 };
+const REFERENCE_FOOT = { leg: 0.44, halfExtents: [0.035, 0.02, 0.05] as Triple, forward: 0.015, ankleAboveFoot: 0.005 };
+/**
+ * A single pair's: the biped's foot on its 0.42 + 0.42 m legs (public/creatures/biped.json),
+ * whose preset gait a single pair walks. Its foot is longer for its leg than the creatures': with
+ * theirs, the designer's bird (0.84 m legs) fell at 0.8 m/s after 6.2 s; with the biped's it walks
+ * 0.8 m/s (30 s, native CLI).
+ */
+const BIPED_FOOT = { leg: 0.84, halfExtents: [0.05, 0.03, 0.12] as Triple, forward: 0.04, ankleAboveFoot: 0.01 };
+/** The reference foot of `design`'s legs, and the scale its leg length gives it. */
+function footOf(design: CreatureDesign): { foot: typeof REFERENCE_FOOT; scale: number } {
+  const foot = design.pairs === 1 ? BIPED_FOOT : REFERENCE_FOOT;
+  return { foot, scale: legLength(design) / foot.leg };
+}
 /**
  * How a leg's mass is split among upper leg, lower leg and foot: 0.6, 0.3, 0.1, as in every
  * shipped file (the creatures' 1.2, 0.6, 0.2 kg; the biped's 7, 3.5, 1 kg within 2 %).
@@ -172,7 +198,7 @@ const SINGLE_FRAME_LENGTH = 0.65;
  */
 export const DESIGN_SPEED = 0.4;
 /**
- * The derived gait's period for legs of REFERENCE_LEG, s: the quadruped preset's at 0.8 m/s,
+ * The derived gait's period for the creatures' legs (0.44 m), s: the quadruped preset's at 0.8 m/s,
  * between its 0.45 and 1.6 m/s speed keys' 0.30 and 0.46 s (public/presets/quadruped.json);
  * the gait scales it by √(L / L₀) (derived_gait.h). The quadruped's own preset at 0.4 m/s is
  * about the same, between its 0.15 and 0.45 m/s keys.
@@ -228,6 +254,26 @@ export const SEGMENT_RATIO = { min: 0.5, max: 2 };
  * walked at both speeds; longer ones were not tried.
  */
 export const TARSUS_SHARE = 0.3;
+/**
+ * The least knee range that walks, rad (DEFAULT_DESIGN's 2.4 is the shipped files'), for two leg
+ * frames or more and for a single pair. Measured as above on the insect (also with a third
+ * segment), spider, dragon and quadruped: from 1.4 rad up every one walked as with 2.4 (the knee
+ * does not reach its limit); at 1.1 all but the insect with a third segment fell at 0.8 m/s, at
+ * 0.8 and 0.5 at 0.4 m/s too: a knee that cannot fold cannot lift its foot clear in swing. The
+ * biped, whose preset folds its swing knee further, fell at 1.4 at both speeds and walked from 1.6;
+ * the bird walked from 1.4.
+ */
+export const KNEE_FLEXION_MIN = { frames: 1.4, single: 1.6 };
+/**
+ * The least hip swing that walks, rad (1.2 is the shipped files'). Measured as above: from 0.9
+ * every body of two leg frames or more walked as with 1.2; at 0.7 the insect walked 0.39 m/s for
+ * 0.8 and the spider 0.59, at 0.5 the dragon and the insect fell at 0.8 m/s, at 0.3 the
+ * quadruped fell: a hip that cannot swing cannot take the steps the gait asks for. A single pair
+ * walks the biped's preset, which reaches its hips' range: with a swing of 0.9 to 1.1 the bird ran
+ * 0.97–1.28 m/s when asked for 0.8 (and drifted 21° at 1.1); from 1.2 to 1.5 it and the biped
+ * walked within 1 %.
+ */
+export const HIP_SWING_MIN = { frames: 0.9, single: 1.2 };
 
 // ---- Designs to files. ----
 
@@ -273,14 +319,14 @@ function frameHalfLength(design: CreatureDesign): number {
  * body moves speed × stance time over it, the stance time being the duty factor of the period.
  */
 export function stanceSweep(design: CreatureDesign): number {
-  const period = REFERENCE_PERIOD * Math.sqrt(legLength(design) / REFERENCE_LEG);
+  const period = REFERENCE_PERIOD * Math.sqrt(legLength(design) / REFERENCE_FOOT.leg);
   return DESIGN_SPEED * period * DUTY_FACTOR;
 }
 
 const isColour = (s: unknown): s is string => typeof s === 'string' && /^#[0-9a-fA-F]{6}$/.test(s);
 
 /** The knee of pair `k` of `pairs`. */
-function kneePoints(design: CreatureDesign, k: number): 'forward' | 'backward' {
+export function kneePoints(design: CreatureDesign, k: number): 'forward' | 'backward' {
   if (design.knees === 'forward' || design.pairs === 1) return 'forward';
   if (design.knees === 'backward') return 'backward';
   // mixed: the front half backward (the insect's first of three, the spider's first two of four).
@@ -314,7 +360,8 @@ export function checkDesign(design: CreatureDesign): DesignProblem[] {
   // groups (derived_gait.h), so as one foot ends its stance at the back of its sweep the other
   // lands at the front of its own; they pass within (spacing − sweep), which must leave a
   // foot's length between them.
-  const footLength = 2 * REFERENCE_FOOT.halfExtents[2] * (legLength(design) / REFERENCE_LEG);
+  const { foot, scale } = footOf(design);
+  const footLength = 2 * foot.halfExtents[2] * scale;
   if (design.pairs > 1) {
     const reach = stanceSweep(design) + footLength;
     if (design.frameSpacing < reach) {
@@ -337,7 +384,7 @@ export function checkDesign(design: CreatureDesign): DesignProblem[] {
     });
   }
   // Left and right feet must not overlap.
-  const footHalfWidth = REFERENCE_FOOT.halfExtents[0] * (legLength(design) / REFERENCE_LEG);
+  const footHalfWidth = foot.halfExtents[0] * scale;
   const hipLeast = Math.max(footHalfWidth, thighHalf) + FEET_APART / 2;
   if (design.hipSpacing < hipLeast) {
     problems.push({
@@ -371,6 +418,20 @@ export function checkDesign(design: CreatureDesign): DesignProblem[] {
       message: `a third segment of ${fmt(design.tarsusLength)} m is more than ${TARSUS_SHARE} of the leg (${fmt(length)} m); longer ones have not been measured to walk`,
     });
   }
+  const kneeMin = single ? KNEE_FLEXION_MIN.single : KNEE_FLEXION_MIN.frames;
+  if (design.kneeFlexion < kneeMin) {
+    problems.push({
+      setting: 'kneeFlexion',
+      message: `knees that bend up to ${fmt(design.kneeFlexion)} rad: ${single ? 'a single pair\'s' : 'they'} must bend at least ${kneeMin} rad, or the swinging leg cannot fold to lift its foot clear`,
+    });
+  }
+  const swingMin = single ? HIP_SWING_MIN.single : HIP_SWING_MIN.frames;
+  if (design.hipSwing < swingMin) {
+    problems.push({
+      setting: 'hipSwing',
+      message: `hips that swing up to ${fmt(design.hipSwing)} rad: ${single ? 'a single pair\'s' : 'they'} must swing at least ${swingMin} rad, or the legs cannot take the gait's steps`,
+    });
+  }
   const ratio = design.upperLength / design.lowerLength;
   if (ratio < SEGMENT_RATIO.min || ratio > SEGMENT_RATIO.max) {
     problems.push({
@@ -399,7 +460,7 @@ const fmt = (x: number) => String(Math.round(x * 1000) / 1000);
 export function buildFile(design: CreatureDesign, name = 'designed'): CreatureFile {
   const n = design.pairs;
   const names = FRAME_NAMES[n] ?? FRAME_NAMES[3];
-  const scale = legLength(design) / REFERENCE_LEG;
+  const { foot, scale } = footOf(design);
   const massOfLeg = (design.frameMass * design.legShare) / (1 - design.legShare) / 2;
   const halfWidth = design.bodyWidth / 2;
   const halfHeight = design.bodyHeight / 2;
@@ -409,8 +470,8 @@ export function buildFile(design: CreatureDesign, name = 'designed'): CreatureFi
   const legs = (k: number): LegPairSpec => ({
     name: names[k],
     hipSpacing: tidy(design.hipSpacing),
-    hip: structuredClone(n === 1 ? BIPED_HIP_RANGE : HIP_RANGE),
-    knee: { points: kneePoints(design, k), flexion: KNEE_FLEXION, hyperextension: KNEE_HYPEREXTENSION },
+    hip: hipRange(design),
+    knee: { points: kneePoints(design, k), flexion: tidy(design.kneeFlexion), hyperextension: KNEE_HYPEREXTENSION },
     ankle: { pitch: ANKLE_PITCH, roll: ANKLE_ROLL },
     upper: { length: tidy(design.upperLength), halfThickness: tidy(design.legThickness / 2), mass: tidy(UPPER_SHARE * massOfLeg) },
     lower: { length: tidy(design.lowerLength), halfThickness: tidy((LOWER_THICKNESS * design.legThickness) / 2), mass: tidy(lowerShare * LOWER_SHARE * massOfLeg) },
@@ -420,15 +481,15 @@ export function buildFile(design: CreatureDesign, name = 'designed'): CreatureFi
             length: tidy(design.tarsusLength),
             halfThickness: tidy((TARSUS_THICKNESS * LOWER_THICKNESS * design.legThickness) / 2),
             mass: tidy((1 - lowerShare) * LOWER_SHARE * massOfLeg),
-            hock: { flexion: KNEE_FLEXION, hyperextension: KNEE_HYPEREXTENSION },
+            hock: { flexion: tidy(design.kneeFlexion), hyperextension: KNEE_HYPEREXTENSION },
           },
         }
       : {}),
     foot: {
-      halfExtents: REFERENCE_FOOT.halfExtents.map((h) => tidy(h * scale)) as Triple,
-      forward: tidy(REFERENCE_FOOT.forward * scale),
+      halfExtents: foot.halfExtents.map((h) => tidy(h * scale)) as Triple,
+      forward: tidy(foot.forward * scale),
       mass: tidy(FOOT_SHARE * massOfLeg),
-      ankleAboveFoot: tidy(REFERENCE_FOOT.ankleAboveFoot * scale),
+      ankleAboveFoot: tidy(foot.ankleAboveFoot * scale),
     },
     colours: { left: design.leftColour, right: design.rightColour, foot: FOOT_COLOUR },
   });
@@ -459,6 +520,15 @@ export function buildFile(design: CreatureDesign, name = 'designed'): CreatureFi
     };
   });
   return { format: CREATURE_FORMAT, version: CREATURE_FORMAT_VERSION, name, armature: ARMATURE, legFrames, spine };
+}
+
+/** The hip's range of `design`: the shipped range, its flexion limits scaled by the swing. */
+function hipRange(design: CreatureDesign): { lower: Triple; upper: Triple } {
+  const range = structuredClone(design.pairs === 1 ? BIPED_HIP_RANGE : HIP_RANGE);
+  const scale = design.hipSwing / DEFAULT_DESIGN.hipSwing;
+  range.lower[0] = tidy(range.lower[0] * scale);
+  range.upper[0] = tidy(range.upper[0] * scale);
+  return range;
 }
 
 /** The file of `design` and what is wrong with it. */
@@ -512,6 +582,9 @@ export function designFromFile(file: CreatureFile): CreatureDesign {
   const frameMass = mean((f) => f.mass);
   const legPairMass = mean((f) => 2 * legMass(f.legs));
   const points = frames.map((f) => f.legs.knee.points);
+  // The hip's flexion range against the shipped one of its kind, as a swing (hipRange).
+  const base = n === 1 ? BIPED_HIP_RANGE : HIP_RANGE;
+  const swing = (legs.hip.upper[0] - legs.hip.lower[0]) / (base.upper[0] - base.lower[0]);
   return {
     pairs: n,
     upperLength: legs.upper.length,
@@ -525,6 +598,8 @@ export function designFromFile(file: CreatureFile): CreatureDesign {
     legShare: legPairMass / (frameMass + legPairMass),
     hipSpacing: mean((f) => f.legs.hipSpacing),
     knees: points.every((p) => p === 'forward') ? 'forward' : points.every((p) => p === 'backward') ? 'backward' : 'mixed',
+    kneeFlexion: legs.knee.flexion,
+    hipSwing: Number((swing * DEFAULT_DESIGN.hipSwing).toFixed(6)),
     bodyColour: frames[0].colour,
     spineColour: file.spine[0]?.colour ?? DEFAULT_DESIGN.spineColour,
     leftColour: legs.colours.left,

@@ -227,6 +227,16 @@ export const MASS_PER_LEG = { min: 4.5, max: 20 };
  */
 export const MASS_PER_LEG_SINGLE = { min: 20, max: 32 };
 /**
+ * A single leg frame's least moment of inertia about its pitch axis (side to side), kg·m²: the
+ * biped's torso (36 kg, 0.56 m tall, 0.22 m long) has 1.09. A single pair's hips push against
+ * its frame alone, with no spine or other frames to share the load: the biped and the bird with
+ * their frame cut to 0.25 m tall (0.33, and 0.24 when also narrowed to 0.2 m) walked 30 s at 0.4
+ * m/s; at 0.8 m/s the 0.24 fell at 1.7 and 2.4 s, the 0.33 walked; at 0.15 m tall (0.21 and
+ * 0.12) both fell within 1.3 s. A random design's 25 kg frame 8 cm tall (0.05) tipped over in
+ * its first 0.1 s.
+ */
+export const SINGLE_FRAME_INERTIA_MIN = 0.3;
+/**
  * The legs' share of a leg frame with its legs (the shipped bodies' 0.19–0.39). The insect
  * walked from 0.08 to 0.7 at 0.4 m/s; at 0.05 it fell at 0.8 m/s, and from 0.55 up it ran 14 %
  * slow and more (0.7: 35 %). A light leg frame on heavy legs is swung about by them, a heavy one
@@ -438,6 +448,18 @@ export function checkDesign(design: CreatureDesign): DesignProblem[] {
       setting: ratio < SEGMENT_RATIO.min ? 'upperLength' : 'lowerLength',
       message: `upper leg ${fmt(ratio)} times the lower: it must be ${SEGMENT_RATIO.min}–${SEGMENT_RATIO.max} times (a short segment leaves the knee too little to do)`,
     });
+  }
+  if (single) {
+    const [w, h, l] = buildFile(design).legFrames[0].halfExtents.map((x) => 2 * x);
+    const pitch = (design.frameMass * (h * h + l * l)) / 12;
+    if (pitch < SINGLE_FRAME_INERTIA_MIN) {
+      problems.push({
+        setting: 'bodyHeight',
+        message:
+          `a single leg frame of ${fmt(design.frameMass)} kg, ${fmt(h)} m tall and ${fmt(l)} m long is too easily tipped by its legs ` +
+          `(moment of inertia ${pitch.toFixed(2)} kg·m², at least ${SINGLE_FRAME_INERTIA_MIN} needed; ${fmt(w)} m wide): make it taller, heavier or wider`,
+      });
+    }
   }
   // Total mass, as the mass each leg carries.
   const perLeg = totalMass(buildFile(design)) / (2 * design.pairs);

@@ -113,6 +113,44 @@ describe('the creature designer', { timeout: TEST_TIMEOUT * 3 }, () => {
     assert.deepEqual(problems, []);
   });
 
+  it('changes a body by dragging the handles of its drawing, and the preview follows', { timeout: TEST_TIMEOUT }, async () => {
+    const { page, problems } = await openRecordedPage(browser.context, `${browser.server.url}?threads=1&characters=1`);
+    await ready(page);
+    await page.getByText('Design a creature').click();
+    await page.evaluate(() => window.gaitlab.designer.preset('insect'));
+    await page.waitForFunction(() => window.gaitlab.designer.preview() !== null, null, { timeout: PAGE_TIMEOUT, polling: 100 });
+    const first = await page.evaluate(() => window.gaitlab.designer.preview());
+    const before = await page.evaluate(() => window.gaitlab.designer.values());
+    const drag = async (name, dx, dy) => {
+      const at = await page.evaluate((n) => window.gaitlab.designer.handle(n), name);
+      assert.ok(at, `the ${name} handle is drawn`);
+      await page.mouse.move(at.x, at.y);
+      await page.mouse.down();
+      await page.mouse.move(at.x + dx, at.y + dy, { steps: 6 });
+      // The handle stays under the pointer (on the circle through it, for a leg's joint).
+      const moved = await page.evaluate((n) => window.gaitlab.designer.handle(n), name);
+      await page.mouse.up();
+      return moved;
+    };
+    // The knee dragged down: a longer upper leg, the other settings as they were.
+    const knee = await drag('knee', 0, 12);
+    const longer = await page.evaluate(() => window.gaitlab.designer.values());
+    assert.ok(longer.upperLength > before.upperLength, `upper leg ${before.upperLength} → ${longer.upperLength} m`);
+    assert.deepEqual({ ...longer, upperLength: before.upperLength }, before);
+    assert.ok(knee.y > (await page.evaluate(() => window.gaitlab.designer.handle('knee'))).y - 40, 'the drawing did not jump');
+    // The last leg frame dragged back: a longer body.
+    await drag('frame', -20, 0);
+    const stretched = await page.evaluate(() => window.gaitlab.designer.values());
+    assert.ok(stretched.frameSpacing > before.frameSpacing, `body length ${before.frameSpacing} → ${stretched.frameSpacing} m`);
+    // The preview is the dragged body.
+    await page.waitForFunction((old) => ![null, old].includes(window.gaitlab.designer.preview()), first, { timeout: PAGE_TIMEOUT, polling: 100 });
+    const file = await page.evaluate(() => window.gaitlab.designer.json());
+    assert.equal(file.legFrames[0].legs.upper.length, longer.upperLength);
+    assert.ok(Math.abs(file.legFrames[0].z - file.legFrames[1].z - stretched.frameSpacing) < 1e-6);
+    await page.screenshot({ path: path.join(resultsDir, 'designer-dragged.png') });
+    assert.deepEqual(problems, []);
+  });
+
   it('teaches a designed body to walk, shares it, and the link puts that creature in the scene with the gait it learnt', { timeout: TEST_TIMEOUT }, async () => {
     const { page, problems } = await openRecordedPage(browser.context, `${browser.server.url}?threads=2&characters=2`);
     await ready(page);

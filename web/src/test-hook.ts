@@ -148,6 +148,12 @@ export interface DesignerHook {
   /** A random body within the designer's limits (creature/design.ts, randomDesign; the same seed, the same body). */
   randomize(seed: number): void;
   /**
+   * Where a handle of the designer's drawing is in the page (CSS px), to drag with the mouse:
+   * knee, hock, ankle, frame, top, hip or side (creature/blueprint.ts); null when the design has
+   * none such or the folder is closed.
+   */
+  handle(name: string): { x: number; y: number } | null;
+  /**
    * "Teach it to walk": the optimize panel searches a gait for the designed body with its
    * teaching settings and `form` written over them into its fields, as optimize() does; resolves
    * with optimizeStatus() when it ends.
@@ -161,11 +167,6 @@ declare global {
   }
 }
 
-declare global {
-  interface Window {
-    gaitlab: GaitlabHook;
-  }
-}
 
 /** The page's parts the hook forwards to (main.ts). */
 export interface TestHookHost {
@@ -242,6 +243,7 @@ export function installTestHook(host: TestHookHost): GaitlabHook {
       preview: () => host.designer().preview(),
       preset: (name: DesignPreset) => host.designer().loadPreset(name),
       randomize: (seed: number) => host.designer().set(randomDesign(seed)),
+      handle: (name: string) => host.designer().blueprint.handlePosition(name),
       teach: async (form?: OptimizeForm) => (await host.designer().teach(form)) as OptimizeStatus,
     }),
   };

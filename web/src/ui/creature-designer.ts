@@ -7,6 +7,7 @@
 import type GUI from 'lil-gui';
 import type { Controller } from 'lil-gui';
 import { guardNumberController } from './field-check';
+import { DesignBlueprint } from './design-blueprint';
 import { totalMass, type CreatureFile } from '../creature/creature-file';
 import {
   DEFAULT_DESIGN,
@@ -73,6 +74,8 @@ export class CreatureDesigner {
   private readonly values: CreatureDesign & { preset: DesignPreset | 'custom'; previewSpeed: number; show: boolean };
   private readonly controls = new Map<keyof CreatureDesign, Controller>();
   private readonly status: HTMLElement;
+  /** The side and top views, with handles to drag. */
+  readonly blueprint: DesignBlueprint;
   private timer: ReturnType<typeof setTimeout> | undefined;
   /** The preview character's id once the worker has reported it. */
   private previewId: number | null = null;
@@ -97,7 +100,9 @@ export class CreatureDesigner {
     this.status.className = 'designer-status';
     this.status.setAttribute('role', 'status');
     this.status.setAttribute('data-testid', 'designer-status');
-    this.folder.$children.prepend(this.status);
+    this.blueprint = new DesignBlueprint((change) => this.set(change));
+    // The drawing above the status line: a refusal that lengthens the line does not move a handle from under the pointer.
+    this.folder.$children.prepend(this.blueprint.element, this.status);
 
     const f = this.folder;
     f.add(v, 'preset', [...DESIGN_PRESETS, 'custom'])
@@ -122,6 +127,10 @@ export class CreatureDesigner {
     this.controls.get('knees')!.domElement.title =
       'mixed: the front half bend backward (as a dog\'s front legs), the rest forward; forward: as a human\'s; backward: all of them (a bird\'s knee points forward: its backward joint is the hock of a third segment)';
     this.controls.get('legShare')!.domElement.title = 'the legs\' share of a leg frame with its two legs, by mass';
+    const joints = f.addFolder('Joints');
+    for (const key of ['kneeFlexion', 'hipSwing'] as const) number(joints, key);
+    this.controls.get('kneeFlexion')!.domElement.title = 'how far each knee (and hock) bends from straight, at most';
+    this.controls.get('hipSwing')!.domElement.title = 'how far each hip swings forward and back, at most (a single pair: further forward than back, as the biped\'s)';
     const body = f.addFolder('Body');
     for (const key of ['frameSpacing', 'bodyWidth', 'bodyHeight', 'frameMass'] as const) number(body, key);
     this.controls.get('frameSpacing')!.domElement.title = 'the spacing of neighbouring leg frames, centre to centre';
@@ -146,6 +155,7 @@ export class CreatureDesigner {
       if (!v.show) this.setShown(true);
     });
     this.showStatus();
+    this.blueprint.show(this.design());
   }
 
   /** The settings now. */
@@ -275,6 +285,7 @@ export class CreatureDesigner {
 
   /** A control changed: the design is the user's own now, and is sent after the pause. */
   private edited(): void {
+    this.blueprint.show(this.design());
     this.values.preset = 'custom';
     this.folder.controllers[0].updateDisplay();
     this.refusal = null;

@@ -10,10 +10,13 @@ import {
   DEFAULT_DESIGN,
   designCreature,
   designFromFile,
+  HIP_SWING_MIN,
+  KNEE_FLEXION_MIN,
   LEG_SHARE_RANGE,
   MASS_PER_LEG,
   randomDesign,
   SETTING_RANGES,
+  SINGLE_FRAME_INERTIA_MIN,
   stanceSweep,
   type CreatureDesign,
 } from '../../../web/src/creature/design';
@@ -151,6 +154,70 @@ describe('legs of three segments', () => {
     const problems = checkDesign({ ...DEFAULT_DESIGN, upperLength: 0.2, lowerLength: 0.2, tarsusLength: 0.2 });
     expect(settingsOf(problems)).toEqual(['tarsusLength']);
     expect(problems[0].message).toMatch(/more than 0.3 of the leg/);
+  });
+});
+
+describe('joint ranges', () => {
+  it('read back from every shipped creature as the ranges they have', () => {
+    for (const name of SHIPPED) {
+      const design = designFromFile(shipped(name));
+      expect(design.kneeFlexion, name).toBe(2.4);
+      expect(design.hipSwing, name).toBeCloseTo(1.2, 6);
+      // Built again, the hips and knees are the file's.
+      const legs = buildFile(design).legFrames[0].legs;
+      expect(legs.hip, name).toEqual(shipped(name).legFrames[0].legs.hip);
+      expect(legs.knee.flexion, name).toBe(shipped(name).legFrames[0].legs.knee.flexion);
+    }
+  });
+
+  it('set the knees\' and hocks\' flexion, and scale the hips\' swing (a single pair keeps the biped\'s shape of range)', () => {
+    const insect = buildFile({ ...DEFAULT_DESIGN, kneeFlexion: 1.8, hipSwing: 0.9, tarsusLength: 0.05 });
+    for (const f of insect.legFrames) {
+      expect(f.legs.knee.flexion).toBe(1.8);
+      expect(f.legs.tarsus?.hock.flexion).toBe(1.8);
+      expect(f.legs.hip.lower).toEqual([-0.9, -0.3, -0.35]);
+      expect(f.legs.hip.upper).toEqual([0.9, 0.3, 0.35]);
+    }
+    const biped = designFromFile(shipped('biped'));
+    const hips = buildFile({ ...biped, hipSwing: 1.5 }).legFrames[0].legs.hip;
+    expect(hips.lower[0]).toBeCloseTo(-2.5, 6);
+    expect(hips.upper[0]).toBeCloseTo(0.875, 6);
+    expect(designFromFile(buildFile({ ...biped, hipSwing: 1.5 })).hipSwing).toBeCloseTo(1.5, 6);
+  });
+
+  it('refuse knees that cannot fold and hips that cannot swing as far as the gait needs, by leg count', () => {
+    const insect = DEFAULT_DESIGN;
+    const biped = designFromFile(shipped('biped'));
+    expect(settingsOf(checkDesign({ ...insect, kneeFlexion: KNEE_FLEXION_MIN.frames }))).toEqual([]);
+    expect(settingsOf(checkDesign({ ...insect, kneeFlexion: KNEE_FLEXION_MIN.frames - 0.05 }))).toEqual(['kneeFlexion']);
+    expect(settingsOf(checkDesign({ ...biped, kneeFlexion: KNEE_FLEXION_MIN.frames }))).toEqual(['kneeFlexion']);
+    expect(settingsOf(checkDesign({ ...biped, kneeFlexion: KNEE_FLEXION_MIN.single }))).toEqual([]);
+    expect(settingsOf(checkDesign({ ...insect, hipSwing: HIP_SWING_MIN.frames }))).toEqual([]);
+    const problems = checkDesign({ ...insect, hipSwing: HIP_SWING_MIN.frames - 0.05 });
+    expect(settingsOf(problems)).toEqual(['hipSwing']);
+    expect(problems[0].message).toMatch(/cannot take the gait's steps/);
+    expect(settingsOf(checkDesign({ ...biped, hipSwing: HIP_SWING_MIN.frames }))).toEqual(['hipSwing']);
+    expect(settingsOf(checkDesign({ ...biped, hipSwing: HIP_SWING_MIN.single }))).toEqual([]);
+  });
+});
+
+describe('a single pair', () => {
+  it('stands on the biped\'s foot, scaled by its leg length', () => {
+    const biped = designFromFile(shipped('biped'));
+    expect(buildFile(biped).legFrames[0].legs.foot).toEqual({ ...shipped('biped').legFrames[0].legs.foot, mass: expect.any(Number) });
+    const longer = buildFile({ ...biped, upperLength: 0.5, lowerLength: 0.5 }).legFrames[0].legs.foot;
+    expect(longer.halfExtents[2]).toBeCloseTo(0.12 * (1.0 / 0.84), 6);
+  });
+
+  it('refuses a leg frame its legs would tip over: too flat, too short or too light', () => {
+    const biped = designFromFile(shipped('biped'));
+    expect(checkDesign(biped)).toEqual([]);
+    const flat = checkDesign({ ...biped, bodyHeight: 0.15 });
+    expect(settingsOf(flat)).toEqual(['bodyHeight']);
+    expect(flat[0].message).toMatch(new RegExp(`at least ${SINGLE_FRAME_INERTIA_MIN} needed`));
+    // Taller passes; the same frame for two pairs or more is not judged so (its spine and the other frames share the load).
+    expect(checkDesign({ ...biped, bodyHeight: 0.3 })).toEqual([]);
+    expect(settingsOf(checkDesign({ ...DEFAULT_DESIGN, bodyHeight: 0.08 }))).not.toContain('bodyHeight');
   });
 });
 

@@ -12,9 +12,9 @@ const HEIGHT = 150;
 const SIDE_SHARE = 0.62;
 /** Around each view, CSS px. */
 const MARGIN = 10;
-/** A handle's radius, and how near the pointer must be to take it, CSS px. */
+/** A handle's radius, and how near the pointer (a finger: further) must be to take it, CSS px. */
 const HANDLE_RADIUS = 5;
-const REACH = 12;
+const REACH = { mouse: 12, touch: 22 };
 const INK = '#e8e8e8';
 const HANDLE_FILL = '#ffffff';
 const HELD_FILL = '#f5c542';
@@ -196,7 +196,7 @@ export class DesignBlueprint {
     const r = this.canvas.getBoundingClientRect();
     const p = { x: e.clientX - r.left, y: e.clientY - r.top };
     let best: Handle | null = null;
-    let nearest = REACH;
+    let nearest = e.pointerType === 'touch' ? REACH.touch : REACH.mouse;
     for (const h of this.handles()) {
       const c = this.toCanvas(h);
       const d = Math.hypot(c.x - p.x, c.y - p.y);

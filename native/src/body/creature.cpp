@@ -31,11 +31,14 @@ struct Reader {
     return false;
   }
   // An object with exactly the fields `names`.
-  bool fields(const json& v, const std::string& path, std::initializer_list<const char*> names) {
+  // `v` is an object with every field of `names` and none but those and the `optional` ones.
+  bool fields(const json& v, const std::string& path, std::initializer_list<const char*> names,
+              std::initializer_list<const char*> optional = {}) {
     if (!v.is_object()) return fail(path, "expected an object, got " + gait::jsonTypeName(v));
     for (const auto& item : v.items()) {
       bool known = false;
       for (const char* n : names) known = known || item.key() == n;
+      for (const char* n : optional) known = known || item.key() == n;
       if (!known) return fail(join(path, item.key()), "unknown field");
     }
     for (const char* n : names)
@@ -149,8 +152,7 @@ bool readLegs(Reader& r, const json& v, const std::string& path, int version, Le
   const bool three = v.is_object() && v.contains("tarsus");
   if (three && version < 2) return r.fail(join(path, "tarsus"), "a third leg segment needs version 2 of the format");
   if (three && !readTarsus(r, v["tarsus"], join(path, "tarsus"), out)) return false;
-  if (!(three ? r.fields(v, path, {"name", "hipSpacing", "hip", "knee", "ankle", "upper", "lower", "tarsus", "foot", "colours"})
-              : r.fields(v, path, {"name", "hipSpacing", "hip", "knee", "ankle", "upper", "lower", "foot", "colours"})) ||
+  if (!r.fields(v, path, {"name", "hipSpacing", "hip", "knee", "ankle", "upper", "lower", "foot", "colours"}, {"tarsus"}) ||
       !r.text(v["name"], join(path, "name"), 0, &out->name) ||
       !r.number(v["hipSpacing"], join(path, "hipSpacing"), 0, 1, &out->hipSpacing))
     return false;

@@ -400,10 +400,12 @@ class WorkerScene {
         return;
       }
       case 'spawnCreature': {
-        // The new character's id, or the refusal: to the request if there is one.
-        const answer = (id: number | null, error: string | null) => {
+        // The new character's id, or the refusal: to the request if there is one (the reason
+        // alone: the asker knows what it asked), else as a commandError (which says what was
+        // refused when the module refused it).
+        const answer = (id: number | null, error: string | null, what = '') => {
           if (command.request !== undefined) post({ type: 'spawned', request: command.request, id, error });
-          else if (error !== null) post({ type: 'commandError', message: error });
+          else if (error !== null) post({ type: 'commandError', message: what + error });
         };
         if (sim.characterCount >= MAX_CHARACTERS) {
           answer(null, `the crowd is at its limit: the page holds at most ${MAX_CHARACTERS} characters`);
@@ -414,7 +416,7 @@ class WorkerScene {
           id = sim.spawnCreature(command.json, command.x, command.z, command.heading);
         } catch (error) {
           if (!(error instanceof GaitlabError)) throw error;
-          answer(null, `the command 'spawnCreature' was refused: ${error.detail}`);
+          answer(null, error.detail, "the command 'spawnCreature' was refused: ");
           return;
         }
         const refused = command.gait === undefined ? null : this.giveGait(sim, id, command.gait, 'the creature was not added');

@@ -42,8 +42,6 @@ const LOOP_DISTANCE = 8;
 const RESTART_FALLEN = 3;
 /** lil-gui's folder opening animation, ms (its CSS transition is 0.3 s), with a margin. */
 const OPENING_MS = 400;
-/** What a refused spawn's answer starts with when the module refused the file (sim.worker.ts). */
-const SPAWN_REFUSED = "the command 'spawnCreature' was refused: ";
 
 export interface DesignerHost {
   send(command: SceneCommand): void;
@@ -267,7 +265,7 @@ export class CreatureDesigner {
         if (this.pending !== pending) return;
         const message = error instanceof Error ? error.message : String(error);
         this.pending = null;
-        this.refusal = `the module refused the body: ${message.startsWith(SPAWN_REFUSED) ? message.slice(SPAWN_REFUSED.length) : message}`;
+        this.refusal = `the module refused the body: ${message}`;
         this.showStatus();
       },
     );

@@ -510,12 +510,13 @@ int optimizeCommand(int argc, char** argv) {
     search.gait = gait::defaultGait(search.character);
     if (gait::derivesGait(search.character)) startName = "derived";
   }
-  search.key = -1;  // unless --key names one: tunedKey, once the goal speeds are read
+  // The key tuned: the one --key names, else (once the goal speeds are read) optimize::tunedKey.
+  std::optional<int> namedKey;
   if (o.values.count("--key")) {
     double speed = 0;
     if (!o.number("--key", 0, 5, 0.0, &speed)) return api::usageError("optimize", o.error);
-    search.key = search.gait.keyAt(speed);
-    if (search.key < 0) {
+    namedKey = search.gait.keyAt(speed);
+    if (*namedKey < 0) {
       std::string speeds;
       for (const gait::SpeedKey& k : search.gait.keys) speeds += (speeds.empty() ? "" : ", ") + json(k.speed).dump();
       return api::usageError("optimize", "--key: the gait has no key at " + json(speed).dump() +
@@ -561,7 +562,7 @@ int optimizeCommand(int argc, char** argv) {
   const std::string settingsError =
       optimize::readObjectiveOptions(given("--speeds"), given("--grounds"), given("--objective"), &search.objective);
   if (!settingsError.empty()) return api::usageError("optimize", settingsError);
-  if (search.key < 0) search.key = optimize::tunedKey(search.gait, search.objective.speeds);
+  search.key = namedKey.value_or(optimize::tunedKey(search.gait, search.objective.speeds));
   const gait::GaitParams tuned = search.gait.keys[search.key].params;
 
   std::string command = "gaitlab";

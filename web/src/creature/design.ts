@@ -268,7 +268,7 @@ export const TARSUS_SHARE = 0.3;
  * The least knee range that walks, rad (DEFAULT_DESIGN's 2.4 is the shipped files'), for two leg
  * frames or more and for a single pair. Measured as above on the insect (also with a third
  * segment), spider, dragon and quadruped: from 1.4 rad up every one walked as with 2.4 (the knee
- * does not reach its limit); at 1.1 all but the insect with a third segment fell at 0.8 m/s, at
+ * does not reach its limit); at 1.1 every one fell at 0.8 m/s (and walked at 0.4), at
  * 0.8 and 0.5 at 0.4 m/s too: a knee that cannot fold cannot lift its foot clear in swing. The
  * biped, whose preset folds its swing knee further, fell at 1.4 at both speeds and walked from 1.6;
  * the bird walked from 1.4.

@@ -167,7 +167,6 @@ declare global {
   }
 }
 
-
 /** The page's parts the hook forwards to (main.ts). */
 export interface TestHookHost {
   stats(): GaitlabStats;

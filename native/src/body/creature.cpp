@@ -30,7 +30,6 @@ struct Reader {
     if (!error) error = CreatureError{field, std::move(message)};
     return false;
   }
-  // An object with exactly the fields `names`.
   // `v` is an object with every field of `names` and none but those and the `optional` ones.
   bool fields(const json& v, const std::string& path, std::initializer_list<const char*> names,
               std::initializer_list<const char*> optional = {}) {

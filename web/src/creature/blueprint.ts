@@ -178,7 +178,6 @@ export function dragTo(design: CreatureDesign, name: HandleName, point: Point): 
   const handle = [...view.side.handles, ...view.top.handles].find((h) => h.name === name);
   if (!handle) return {};
   const joints = view.side.legs[0].joints;
-  const frame = buildFile(design).legFrames[0];
   let value: number;
   switch (name) {
     case 'knee':
@@ -191,8 +190,8 @@ export function dragTo(design: CreatureDesign, name: HandleName, point: Point): 
       value = distance(point, joints[joints.length - 2]);
       break;
     case 'top':
-      // The frame's top is its height above its hips: its centre's (aboveHips) and half its height.
-      value = point.y - frame.aboveHips + design.bodyHeight / 2;
+      // The frame's top is its height less the hips' fixed height above its underside.
+      value = design.bodyHeight + point.y - handle.at.y;
       break;
     case 'frame':
       value = -point.x / (design.pairs - 1);

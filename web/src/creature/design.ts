@@ -134,6 +134,8 @@ const ARMATURE = 0.05;
  */
 const HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-1.2, -0.3, -0.35], upper: [1.2, 0.3, 0.35] };
 const BIPED_HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-2.0, -0.6, -0.5], upper: [0.7, 0.6, 0.5] };
+/** The hip range a body of `pairs` leg pairs has at the shipped swing. */
+const shippedHipRange = (pairs: number) => (pairs === 1 ? BIPED_HIP_RANGE : HIP_RANGE);
 const KNEE_HYPEREXTENSION = 0.05;
 const ANKLE_PITCH = 0.9;
 const ANKLE_ROLL = 0.4;
@@ -450,7 +452,7 @@ export function checkDesign(design: CreatureDesign): DesignProblem[] {
     });
   }
   if (single) {
-    const [w, h, l] = buildFile(design).legFrames[0].halfExtents.map((x) => 2 * x);
+    const [w, h, l] = [design.bodyWidth, design.bodyHeight, 2 * frameHalfLength(design)];
     const pitch = (design.frameMass * (h * h + l * l)) / 12;
     if (pitch < SINGLE_FRAME_INERTIA_MIN) {
       problems.push({
@@ -546,7 +548,7 @@ export function buildFile(design: CreatureDesign, name = 'designed'): CreatureFi
 
 /** The hip's range of `design`: the shipped range, its flexion limits scaled by the swing. */
 function hipRange(design: CreatureDesign): { lower: Triple; upper: Triple } {
-  const range = structuredClone(design.pairs === 1 ? BIPED_HIP_RANGE : HIP_RANGE);
+  const range = structuredClone(shippedHipRange(design.pairs));
   const scale = design.hipSwing / DEFAULT_DESIGN.hipSwing;
   range.lower[0] = tidy(range.lower[0] * scale);
   range.upper[0] = tidy(range.upper[0] * scale);
@@ -605,7 +607,7 @@ export function designFromFile(file: CreatureFile): CreatureDesign {
   const legPairMass = mean((f) => 2 * legMass(f.legs));
   const points = frames.map((f) => f.legs.knee.points);
   // The hip's flexion range against the shipped one of its kind, as a swing (hipRange).
-  const base = n === 1 ? BIPED_HIP_RANGE : HIP_RANGE;
+  const base = shippedHipRange(n);
   const swing = (legs.hip.upper[0] - legs.hip.lower[0]) / (base.upper[0] - base.lower[0]);
   return {
     pairs: n,

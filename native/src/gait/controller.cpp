@@ -114,17 +114,18 @@ void Controller::setGait(const Gait& gait) {
   blendAt(std::abs(desiredVelocity_.z()), /*restart=*/!started_);
 }
 
-void Controller::blendAt(double speed, bool restart, bool cycleStart) {
+void Controller::blendAt(double speed, bool restart, bool atTransitionPhase) {
   const bool first = player_.legCount() == 0 || restart;
   const int legs = static_cast<int>(m_.legs.size());
   GaitParams next;
   paramsAtSpeed(character_, gait_, speed, &next);
   blendedAt_ = speed;
   // A change of footfall pattern in mid-stride (gait/gait_transition.h) is taken up where the gait
-  // cycle starts again, and there the gait phase moves so that each leg's own phase moves as
-  // little as the two patterns allow. Until then the parameters stay the old gait's.
+  // phase reaches the old key's transitionPhase (the cycle's start unless it says otherwise), and
+  // there the gait phase moves so that each leg's own phase moves as little as the two patterns
+  // allow. Until then the parameters stay the old gait's.
   const bool change = !first && footfallDiffers(params_.legs, next.legs, legs);
-  transitionPending_ = change && !cycleStart;
+  transitionPending_ = change && !atTransitionPhase;
   if (transitionPending_) return;
   if (change) {
     // Speed tracking's trim and mean error belong to the gait they were measured under: the
@@ -235,8 +236,10 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   const double phaseBefore = player_.phase();
   player_.update(dt, s.footContact);
   updateStand(s, comVelocity);
-  // A change of footfall pattern left pending is taken up as the cycle starts again.
-  if (transitionPending_ && player_.phase() < phaseBefore) blendAt(std::abs(desiredVelocity_.z()), false, true);
+  // A change of footfall pattern left pending is taken up where the old gait's cycle reaches its
+  // transitionPhase.
+  if (transitionPending_ && phaseReached(phaseBefore, player_.phase(), params_.transitionPhase))
+    blendAt(std::abs(desiredVelocity_.z()), false, true);
   // P0 of a leg whose first swing starts without a lift-off event: where its foot is now.
   if (!started_) {
     for (size_t l = 0; l < m_.legs.size(); ++l)

@@ -140,10 +140,10 @@ class Controller {
 
   // params_ from the gait's keys at |v_d|, and the gait player's period and schedule from them;
   // with `restart` (a gait set before the first step) the player starts again from the schedule,
-  // at the phase it has. Once walking, a change of footfall pattern waits for the start of the
-  // gait cycle: until then the parameters stay as they are and the change is pending (update()
-  // takes it up as the phase wraps, `cycleStart`).
-  void blendAt(double speed, bool restart = false, bool cycleStart = false);
+  // at the phase it has. Once walking, a change of footfall pattern waits for the gait phase to
+  // reach the current key's transitionPhase: until then the parameters stay as they are and the
+  // change is pending (update() takes it up there, `atTransitionPhase`).
+  void blendAt(double speed, bool restart = false, bool atTransitionPhase = false);
 
   const body::Morphology& m_;
   Character character_;
@@ -151,7 +151,7 @@ class Controller {
   GaitParams params_;
   double blendedAt_ = 0;  // the |v_d| params_ was blended at (m/s)
   int gaitChanges_ = 0;
-  bool transitionPending_ = false;  // a change of footfall pattern waits for the cycle's start
+  bool transitionPending_ = false;  // a change of footfall pattern waits for transitionPhase
   Goal goal_;
   GaitPlayer player_;
   std::vector<LegGeometry> geometry_;

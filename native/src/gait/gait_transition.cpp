@@ -22,6 +22,11 @@ bool footfallDiffers(const LegParams* a, const LegParams* b, int legs) {
   return false;
 }
 
+bool phaseReached(double before, double after, double at) {
+  if (after >= before) return before < at && at <= after;
+  return at > before || at <= after;  // wrapped
+}
+
 double transitionPhaseShift(const LegParams* from, const LegParams* to, int legs) {
   double c = 0, s = 0;
   for (int i = 0; i < std::min(legs, kMaxLegs); ++i) {

@@ -172,6 +172,11 @@ void migrateParams(int version, json* params) {
     // 8: where speed tracking starts, per key (speedTrackedFrom; 0.15 m/s is the old constant).
     if (!params->contains("speedTrackedFrom")) (*params)["speedTrackedFrom"] = 0.15;
   }
+  if (version < 9) {
+    // 9: where in its cycle a key's gait is left for another footfall pattern (transitionPhase;
+    // 0, the cycle's start, is where every change was taken).
+    if (!params->contains("transitionPhase")) (*params)["transitionPhase"] = 0.0;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

@@ -78,3 +78,19 @@ TEST(GaitTransition, KeysOfDifferentFootfallAreNotBlended) {
   paramsAtSpeed(Character::Quadruped, g, 0.3, &p);
   EXPECT_NEAR(p.period, 0.6, 1e-12);
 }
+
+// Where a change of gait is taken up (GaitParams::transitionPhase): the step in which the gait
+// phase reaches it, the wrap at 1 for 0 (the cycle's start), and not again until the phase comes
+// round.
+TEST(GaitTransition, APhaseIsReachedInTheStepThatPassesIt) {
+  EXPECT_TRUE(phaseReached(0.44, 0.46, 0.45));
+  EXPECT_TRUE(phaseReached(0.44, 0.45, 0.45));
+  EXPECT_FALSE(phaseReached(0.45, 0.46, 0.45));  // passed in the step before
+  EXPECT_FALSE(phaseReached(0.40, 0.44, 0.45));
+  EXPECT_TRUE(phaseReached(0.99, 0.01, 0.0));    // the cycle's start: the wrap
+  EXPECT_FALSE(phaseReached(0.0, 0.02, 0.0));
+  EXPECT_FALSE(phaseReached(0.5, 0.5, 0.0));     // a phase held (standing) reaches nothing
+  EXPECT_TRUE(phaseReached(0.98, 0.02, 0.99));   // across the wrap
+  EXPECT_TRUE(phaseReached(0.98, 0.02, 0.01));
+  EXPECT_FALSE(phaseReached(0.98, 0.02, 0.5));
+}

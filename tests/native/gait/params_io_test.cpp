@@ -178,21 +178,29 @@ TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
   // gait of version 5 did, so a version-5 file loads as itself, keys and all, with it off (and
   // with the later schemas' fields at their old constants, as below).
   for (Character c : {Character::Biped, Character::Quadruped})
-    expectMigrated(c, 5, {{"standSpeed", 0.0}, {"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}});
+    expectMigrated(c, 5, {{"standSpeed", 0.0}, {"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}, {"transitionPhase", 0.0}});
 }
 
 TEST(GaitFile, AVersion6FileIsMigratedToTheOldTrimBound) {
   // Schema 7 made speed tracking's trim bound a parameter of each key (maxSpeedTrim); every gait
   // before it had 0.5 m/s, so a version-6 file loads with 0.5 in every key and nothing else moved.
   for (Character c : {Character::Biped, Character::Quadruped})
-    expectMigrated(c, 6, {{"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}});
+    expectMigrated(c, 6, {{"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}, {"transitionPhase", 0.0}});
 }
 
 TEST(GaitFile, AVersion7FileIsMigratedToTrackingFromTheOldSpeed) {
   // Schema 8 made the desired speed from which speed tracking acts a parameter of each key
   // (speedTrackedFrom); every gait before it had 0.15 m/s, so a version-7 file loads with 0.15 in
   // every key and nothing else moved.
-  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 7, {{"speedTrackedFrom", 0.15}});
+  for (Character c : {Character::Biped, Character::Quadruped})
+    expectMigrated(c, 7, {{"speedTrackedFrom", 0.15}, {"transitionPhase", 0.0}});
+}
+
+TEST(GaitFile, AVersion8FileIsMigratedToChangingGaitAtTheCycleStart) {
+  // Schema 9 made where in its cycle a key's gait is left for another footfall pattern a
+  // parameter of each key (transitionPhase); every change before it was taken where the cycle
+  // starts, so a version-8 file loads with 0 in every key and nothing else moved.
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 8, {{"transitionPhase", 0.0}});
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

@@ -70,10 +70,6 @@ Table build(Character c) {
   // ---- per controller (§3.3: "the parameter tweaked per controller was the gait period") ----
   scalar("period", kTiming, {0.3, 3.0}, "s", "gait period T: one full cycle of every leg (§3.1.1)",
          proto.period);
-  scalar("transitionPhase", kTiming, {0, 0.99}, "cycle",
-         "gait phase of this key's cycle at which a change to another footfall pattern (a gait "
-         "transition) is taken up; 0: where the cycle starts",
-         proto.transitionPhase);
   scalar("maxAcceleration", kFootPlacement, {0.1, 5.0}, "m/s²",
          "bound on how fast the desired velocity ramps towards the goal speed (§3.1.6)",
          proto.maxAcceleration);
@@ -98,6 +94,10 @@ Table build(Character c) {
          "speed tracking: the desired speed from which the trim integrates the speed error; below "
          "it the trim fades and the capture-point placement governs",
          proto.speedTrackedFrom);
+  scalar("transitionPhase", kTiming, {0, 0.99}, "cycle",
+         "gait phase of this key's cycle at which a change to another footfall pattern (a gait "
+         "transition) is taken up; 0: where the cycle starts",
+         proto.transitionPhase);
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

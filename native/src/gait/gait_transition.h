@@ -45,7 +45,7 @@ bool footfallDiffers(const LegParams* a, const LegParams* b, int legs);
 double transitionPhaseShift(const LegParams* from, const LegParams* to, int legs);
 
 // Whether the gait phase, moving forward from `before` to `after` in one step (wrapping at 1),
-// reached `at` (in [0, 1)): at = 0 is the wrap itself, the cycle's start.
+// reached `at` (in [0, 1]): at = 0 (or 1) is the wrap itself, the cycle's start.
 bool phaseReached(double before, double after, double at);
 
 }  // namespace gaitlab::gait

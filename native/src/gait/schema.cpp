@@ -94,7 +94,7 @@ Table build(Character c) {
          "speed tracking: the desired speed from which the trim integrates the speed error; below "
          "it the trim fades and the capture-point placement governs",
          proto.speedTrackedFrom);
-  scalar("transitionPhase", kTiming, {0, 0.99}, "cycle",
+  scalar("transitionPhase", kTiming, {0, 1}, "1",
          "gait phase of this key's cycle at which a change to another footfall pattern (a gait "
          "transition) is taken up; 0: where the cycle starts",
          proto.transitionPhase);

@@ -88,6 +88,8 @@ TEST(GaitTransition, APhaseIsReachedInTheStepThatPassesIt) {
   EXPECT_FALSE(phaseReached(0.45, 0.46, 0.45));  // passed in the step before
   EXPECT_FALSE(phaseReached(0.40, 0.44, 0.45));
   EXPECT_TRUE(phaseReached(0.99, 0.01, 0.0));    // the cycle's start: the wrap
+  EXPECT_TRUE(phaseReached(0.99, 0.01, 1.0));    // 1 is the cycle's start too
+  EXPECT_FALSE(phaseReached(0.5, 0.6, 1.0));
   EXPECT_FALSE(phaseReached(0.0, 0.02, 0.0));
   EXPECT_FALSE(phaseReached(0.5, 0.5, 0.0));     // a phase held (standing) reaches nothing
   EXPECT_TRUE(phaseReached(0.98, 0.02, 0.99));   // across the wrap

@@ -10,19 +10,19 @@
 //
 // So between two neighbouring keys whose footfall patterns differ (a transition), the parameters
 // are not blended: they are the key of the half of the interval the desired speed is in, and the
-// gait changes once the desired speed has crossed the middle, where the gait phase next reaches
-// the old key's transitionPhase (the controller's rule for every change of footfall pattern, a
-// gait pinned by the user too). Where in the stride matters: taken up at whatever phase the
-// stride was in, 3 to 6 % of the quadruped's switches from its pace fell, at the cycle's start
-// none (docs/controller-notes.md §22); its canter left for the trot at the cycle's start fell in
-// 27 % of the benchmark's runs of changes back and forth, left at 0.45 of its cycle in 10 %
-// (§52). So each key says where its gait is left, 0 (the cycle's start) unless tuned. There the gait phase Φ is
-// moved by the mean of the legs' step-trigger moves (transitionPhaseShift), so each leg's own
-// phase ψ = Φ − trigger moves as little as the two patterns allow (walk to trot: an eighth of a
-// cycle each, where the triggers move by up to half a cycle). Measured in the walking
-// benchmark's transition trial (goals changing every 1 to 4 s between two speeds across the
-// change, 20 runs per pair): with the shift the quadruped fell in none of 80 runs, without it in
-// 9 (docs/controller-notes.md §20).
+// gait changes once the desired speed has crossed the middle, where the gait phase next reaches the
+// old key's transitionPhase (the controller's rule for every change of footfall pattern, a gait
+// pinned by the user too). Where in the stride matters: taken up at whatever phase the stride was
+// in, 3 to 6 % of the quadruped's switches from its pace fell, at the cycle's start none
+// (docs/controller-notes.md §22); its canter left for the trot at the cycle's start fell in 27 % of
+// the benchmark's runs of changes back and forth, left at 0.45 of its cycle in 10 % (§52). So each
+// key says where its gait is left, 0 (the cycle's start) unless tuned. There the gait phase Φ is
+// moved by the mean of the legs' step-trigger moves (transitionPhaseShift), so each leg's own phase
+// ψ = Φ − trigger moves as little as the two patterns allow (walk to trot: an eighth of a cycle
+// each, where the triggers move by up to half a cycle). Measured in the walking benchmark's
+// transition trial (goals changing every 1 to 4 s between two speeds across the change, 20 runs per
+// pair): with the shift the quadruped fell in none of 80 runs, without it in 9
+// (docs/controller-notes.md §20).
 #pragma once
 #include "gait/params.h"
 

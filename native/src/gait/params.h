@@ -90,9 +90,9 @@ struct GaitParams {
   double speedTrackedFrom = 0.15;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the
-  // one place every change was taken in schemas before 9. The quadruped's canter falls into the trot after it far
-  // less often when it is left just after its leading front foot lifts off, with only the hind
-  // foot that leads the canter down (0.45; docs/controller-notes.md §52).
+  // one place every change was taken in schemas before 9. The quadruped's canter falls in the
+  // trot after it far less often when it is left just after its leading front foot lifts off,
+  // with only the hind foot that leads the canter down (0.45; docs/controller-notes.md §52).
   double transitionPhase = 0;
   JointGains gains;
   LegFrameParams legFrames[kMaxLegFrames];

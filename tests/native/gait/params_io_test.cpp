@@ -148,16 +148,31 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
 
 namespace {
 
+// Every field a schema from 6 on added to each key, with the value its migration gives files
+// older than it: the value that walks as those files did.
+struct AddedField {
+  int schema;
+  const char* name;
+  double value;
+};
+constexpr AddedField kAddedFields[] = {
+    {6, "standSpeed", 0.0},
+    {7, "maxSpeedTrim", 0.5},
+    {8, "speedTrackedFrom", 0.15},
+    {9, "transitionPhase", 0.0},
+};
+
 // The preset of `c` as a file of schema `version` would have it: the fields later schemas added
-// (`added`, each with the value its migration gives) taken out of the parameters and of every key.
-// It must load as the preset with those fields at those values, key by key and bit for bit: a
-// migration adds what was added and moves nothing else.
-void expectMigrated(Character c, int version, const std::vector<std::pair<const char*, double>>& added) {
+// (kAddedFields) taken out of the parameters and of every key. It must load as the preset with
+// those fields at their migrated values, key by key and bit for bit: a migration adds what was
+// added and moves nothing else.
+void expectMigrated(Character c, int version) {
   json current = json::parse(presetText(c));
   ASSERT_TRUE(current.contains("keys"));
   json old = current;
   old["version"] = version;
-  for (const auto& [name, value] : added) {
+  for (const auto& [schema, name, value] : kAddedFields) {
+    if (schema <= version) continue;
     old["params"].erase(name);
     current["params"][name] = value;
     for (json& key : old["keys"]) key["params"].erase(name);
@@ -178,29 +193,28 @@ TEST(GaitFile, AVersion5FileIsMigratedToSteppingInPlace) {
   // gait of version 5 did, so a version-5 file loads as itself, keys and all, with it off (and
   // with the later schemas' fields at their old constants, as below).
   for (Character c : {Character::Biped, Character::Quadruped})
-    expectMigrated(c, 5, {{"standSpeed", 0.0}, {"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}, {"transitionPhase", 0.0}});
+    expectMigrated(c, 5);
 }
 
 TEST(GaitFile, AVersion6FileIsMigratedToTheOldTrimBound) {
   // Schema 7 made speed tracking's trim bound a parameter of each key (maxSpeedTrim); every gait
   // before it had 0.5 m/s, so a version-6 file loads with 0.5 in every key and nothing else moved.
   for (Character c : {Character::Biped, Character::Quadruped})
-    expectMigrated(c, 6, {{"maxSpeedTrim", 0.5}, {"speedTrackedFrom", 0.15}, {"transitionPhase", 0.0}});
+    expectMigrated(c, 6);
 }
 
 TEST(GaitFile, AVersion7FileIsMigratedToTrackingFromTheOldSpeed) {
   // Schema 8 made the desired speed from which speed tracking acts a parameter of each key
   // (speedTrackedFrom); every gait before it had 0.15 m/s, so a version-7 file loads with 0.15 in
   // every key and nothing else moved.
-  for (Character c : {Character::Biped, Character::Quadruped})
-    expectMigrated(c, 7, {{"speedTrackedFrom", 0.15}, {"transitionPhase", 0.0}});
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 7);
 }
 
 TEST(GaitFile, AVersion8FileIsMigratedToChangingGaitAtTheCycleStart) {
   // Schema 9 made where in its cycle a key's gait is left for another footfall pattern a
   // parameter of each key (transitionPhase); every change before it was taken where the cycle
   // starts, so a version-8 file loads with 0 in every key and nothing else moved.
-  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 8, {{"transitionPhase", 0.0}});
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 8);
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

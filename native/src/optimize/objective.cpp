@@ -47,6 +47,10 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"boxHits", 0, 50, "1", "box-hit episodes per goal speed: a box thrown as the demo throws one, only a fall counts", true},
         boxHits);
   s.boxHits = static_cast<int>(std::lround(boxHits));
+  double speedChanges = s.speedChanges;
+  visit({"speedChanges", 0, 256, "1", "speed-change episodes per ground: the goal changes between the slowest and the fastest goal speed, each held 1–4 s (the walking benchmark's gait-change trial)", true},
+        speedChanges);
+  s.speedChanges = static_cast<int>(std::lround(speedChanges));
 }
 
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value) {
@@ -160,7 +164,12 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
 
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
-                          const Ground& ground, bool ramp, const body::Morphology* body) {
+                          const Ground& ground, bool ramp, const body::Morphology* body,
+                          const std::vector<std::pair<double, double>>& schedule) {
+  // A scheduled episode lasts as long as its schedule; the fall penalty's "share of the episode
+  // left" is of that length.
+  ObjectiveSettings episode = settings;
+  if (!schedule.empty()) episode.seconds = schedule.back().first;
   sim::WalkOptions w;
   w.body = body;
   w.terrain = ground.terrain;
@@ -169,8 +178,9 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   w.gait = &gait;
   w.speed = speed;
   if (ramp) w.speedSchedule = {{0.0, 0.0}, {0.5 * settings.seconds, speed}, {settings.seconds, 0.0}};
+  if (!schedule.empty()) w.speedSchedule = schedule;
   w.turnRate = settings.turnRate;
-  w.seconds = settings.seconds;
+  w.seconds = episode.seconds;
   w.pushImpulse = settings.pushImpulse;
   w.pushEvery = settings.pushEvery;
   w.pushDuration = settings.pushDuration;
@@ -184,8 +194,8 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
     w.startImpulseForward = settings.startImpulse * std::cos(angle);
     if (settings.startPhases > 0) w.startPhase = std::fmod(start * 0.6180339887498949, 1.0);
   }
-  ObjectiveRecorder recorder(settings, speed, w.heading, physics::kFixedStep);
-  if (ramp) recorder.setGoalSchedule(w.speedSchedule);
+  ObjectiveRecorder recorder(episode, speed, w.heading, physics::kFixedStep);
+  if (!w.speedSchedule.empty()) recorder.setGoalSchedule(w.speedSchedule);
   std::vector<LegFrameSample> frames;
   w.observe = [&](const sim::Simulation& s) {
     const physics::Character& ch = s.character(0);
@@ -203,6 +213,22 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   const sim::WalkResult r = sim::runWalk(w);
   return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig), r.flightFraction,
                          trackingMisses(r.trackingSamples, r.trackingWithin));
+}
+
+std::vector<std::pair<double, double>> speedChangeSchedule(double lo, double hi, int index, uint32_t seed) {
+  Random r((static_cast<uint64_t>(seed) << 32) ^ (0x5EEDC4A6ull + static_cast<uint64_t>(index)));
+  std::vector<std::pair<double, double>> points;
+  double t = 0;
+  for (int k = 0; k < kSpeedChangeHolds; ++k) {
+    const double goal = k % 2 == 0 ? lo : hi;
+    const double hold = r.uniform(1.0, 4.0);
+    // Held to just before the next hold starts: the goal steps, the controller's own
+    // acceleration limit ramps the desired speed (as the benchmark's schedules do).
+    points.push_back({t, goal});
+    points.push_back({t + hold - 0.001, goal});
+    t += hold;
+  }
+  return points;
 }
 
 double trackingMisses(int samples, int within) {
@@ -281,6 +307,13 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
         add(runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp, body));
       }
     }
+  }
+  if (settings.speedChanges > 0 && !settings.speeds.empty()) {
+    const auto [lo, hi] = std::minmax_element(settings.speeds.begin(), settings.speeds.end());
+    for (const Ground& ground : settings.grounds)
+      for (int k = 0; k < settings.speedChanges; ++k)
+        add(runEpisode(c, gait, settings, *lo, 0, seed + 104729u * static_cast<uint32_t>(k), ground, false, body,
+                       speedChangeSchedule(*lo, *hi, k, seed)));
   }
   for (double speed : settings.speeds)
     for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed, body));

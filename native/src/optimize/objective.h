@@ -103,7 +103,21 @@ struct ObjectiveSettings {
   // the same throws; the walking benchmark's trial draws from seed 7, so a search does not see
   // the throws it is judged by.
   int boxHits = 0;
+  // Speed-change episodes per ground (0 = none): the goal changes back and forth between the
+  // slowest and the fastest of `speeds`, each goal held for 1–4 s drawn from the evaluation's
+  // seed, kSpeedChangeHolds holds, as the walking benchmark's gait-change trial does (Wang et al.
+  // 2010 optimise over speed changes). With keys on both sides of a change of footfall pattern,
+  // these are the episodes that meet the change; the velocity term follows the goal.
+  int speedChanges = 0;
 };
+
+// Goals held in one speed-change episode (the walking benchmark's gait-change trial holds 9).
+constexpr int kSpeedChangeHolds = 9;
+
+// The goal of speed-change episode `index`: `kSpeedChangeHolds` holds alternating from `lo` to
+// `hi`, each 1–4 s long, as (time, goal) points for sim::WalkOptions::speedSchedule. The holds
+// follow from `seed` and `index` alone, so every candidate meets the same changes.
+std::vector<std::pair<double, double>> speedChangeSchedule(double lo, double hi, int index, uint32_t seed);
 
 // The scalar settings as a schema-style table (name, bounds, default, unit, description), so
 // they are read, checked and exported the same way as gait parameters. `speeds` is a list and
@@ -184,13 +198,15 @@ double trackingMisses(int samples, int within);
 
 // One episode: the character walks with `params` on `ground` from start state `start` at goal
 // `speed` (sim::runWalk with the recorder observing every step); with `ramp`, the goal ramps
-// from 0 up to `speed` at half the episode and back to 0 at its end. `seed` fixes the start nudge's
+// from 0 up to `speed` at half the episode and back to 0 at its end; with a `schedule`, the goal
+// follows it instead of `speed`, and the episode lasts until its last point. `seed` fixes the start nudge's
 // direction, the pushes' phases and the bumps. `body`: the character's body (a creature file's,
 // of the kind `c`), or nullptr for the kind's shipped body.
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
                           const Ground& ground = Ground{}, bool ramp = false,
-                          const body::Morphology* body = nullptr);
+                          const body::Morphology* body = nullptr,
+                          const std::vector<std::pair<double, double>>& schedule = {});
 
 // The objective of a parameter set: the mean over every ground × speed × start state. Deterministic:
 // the same inputs give the same bits (each episode is its own single-threaded simulation).

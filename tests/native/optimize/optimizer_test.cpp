@@ -244,6 +244,53 @@ TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
   EXPECT_DOUBLE_EQ(evaluate(gait::Character::Quadruped, preset, s, seed).fk, ramp.fk / 2);
 }
 
+// Speed-change episodes (speedChanges) walk the walking benchmark's gait-change trial: the goal
+// held 1–4 s at a time, alternating from the slowest goal speed to the fastest, nine holds. The
+// holds follow from the evaluation's seed and the episode's index alone, so every candidate
+// meets the same changes, and each episode is scored on its own schedule's length.
+TEST(OptimizeObjective, SpeedChangeEpisodesAlternateBetweenTheSlowestAndFastestGoal) {
+  const auto a = speedChangeSchedule(0.3, 1.0, 0, 11);
+  ASSERT_EQ(a.size(), 2u * kSpeedChangeHolds);
+  EXPECT_EQ(a.front().first, 0.0);
+  for (int k = 0; k < kSpeedChangeHolds; ++k) {
+    const auto& [start, goal] = a[2 * k];
+    const auto& [end, held] = a[2 * k + 1];
+    EXPECT_EQ(goal, k % 2 == 0 ? 0.3 : 1.0);
+    EXPECT_EQ(held, goal);
+    EXPECT_GE(end - start, 1.0 - 0.001);
+    EXPECT_LT(end - start, 4.0);
+    if (k > 0) EXPECT_NEAR(start, a[2 * k - 1].first, 0.0011);
+  }
+  EXPECT_EQ(speedChangeSchedule(0.3, 1.0, 0, 11), a);
+  EXPECT_NE(speedChangeSchedule(0.3, 1.0, 1, 11), a);
+  EXPECT_NE(speedChangeSchedule(0.3, 1.0, 0, 12), a);
+
+  // An episode on that schedule lasts as long as it and follows its goal, not the held speed.
+  const gait::Gait preset = gait::defaultGait(gait::Character::Biped);
+  ObjectiveSettings s;
+  s.seconds = 3.0;
+  s.speeds = {1.0, 0.3};
+  const ObjectiveTerms changing = runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11, Ground{}, false, nullptr, a);
+  ASSERT_FALSE(changing.fell);
+  EXPECT_NEAR(changing.seconds, a.back().first, 0.01);
+  const ObjectiveTerms held = runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11);
+  EXPECT_NEAR(held.seconds, s.seconds, 0.01);
+  // Its goal changes: a walk judged against it moves the travel and velocity terms.
+  EXPECT_NE(changing.fv, held.fv);
+
+  // Beside the held goals' episodes: speedChanges more episodes per ground (`seconds` is the
+  // simulated time of them all).
+  const ObjectiveTerms without = evaluate(gait::Character::Biped, preset, s, 11);
+  s.speedChanges = 2;
+  const ObjectiveTerms with = evaluate(gait::Character::Biped, preset, s, 11);
+  const double expected = 2 * s.seconds + runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11, Ground{}, false,
+                                                     nullptr, speedChangeSchedule(0.3, 1.0, 0, 11)).seconds +
+                          runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11 + 104729u, Ground{}, false, nullptr,
+                                     speedChangeSchedule(0.3, 1.0, 1, 11)).seconds;
+  EXPECT_NEAR(without.seconds, 2 * s.seconds, 0.02);
+  EXPECT_NEAR(with.seconds, expected, 1e-9);
+}
+
 // A ramp episode's goal changes with time (setGoalSchedule): a walker that follows the ramp
 // exactly has no velocity or travel deviation; one that holds the top speed throughout does.
 TEST(OptimizeObjective, ARampingGoalIsFollowedInTime) {

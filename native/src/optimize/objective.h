@@ -208,8 +208,9 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const body::Morphology* body = nullptr,
                           const std::vector<std::pair<double, double>>& schedule = {});
 
-// The objective of a parameter set: the mean over every ground × speed × start state. Deterministic:
-// the same inputs give the same bits (each episode is its own single-threaded simulation).
+// The objective of a parameter set: the mean over every episode: ground × speed × start state,
+// then the ramps, the speed changes and the box hits the settings ask for. Deterministic: the
+// same inputs give the same bits (each episode is its own single-threaded simulation).
 ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
                         const ObjectiveSettings& settings, uint32_t seed,
                         const body::Morphology* body = nullptr);

@@ -164,7 +164,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
 
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
-                          const Ground& ground, bool ramp, const body::Morphology* body,
+                          const Ground& ground, const body::Morphology* body,
                           const std::vector<std::pair<double, double>>& schedule) {
   // A scheduled episode lasts as long as its schedule; the fall penalty's "share of the episode
   // left" is of that length.
@@ -177,8 +177,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   w.character = c;
   w.gait = &gait;
   w.speed = speed;
-  if (ramp) w.speedSchedule = {{0.0, 0.0}, {0.5 * settings.seconds, speed}, {settings.seconds, 0.0}};
-  if (!schedule.empty()) w.speedSchedule = schedule;
+  w.speedSchedule = schedule;
   w.turnRate = settings.turnRate;
   w.seconds = episode.seconds;
   w.pushImpulse = settings.pushImpulse;
@@ -229,6 +228,12 @@ std::vector<std::pair<double, double>> speedChangeSchedule(double lo, double hi,
     t += hold;
   }
   return points;
+}
+
+uint32_t speedChangeSeed(uint32_t seed, int index) { return seed + 104729u * static_cast<uint32_t>(index); }
+
+std::vector<std::pair<double, double>> rampSchedule(double top, double seconds) {
+  return {{0.0, 0.0}, {0.5 * seconds, top}, {seconds, 0.0}};
 }
 
 double trackingMisses(int samples, int within) {
@@ -292,19 +297,21 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     mean.fell = mean.fell || t.fell;
     ++episodes;
   };
-  // The goal speeds, then (with `ramp`) the ramp up to the fastest of them.
+  // The goal speeds held, then (with `ramp`) the ramp up to the fastest of them, for every start.
   struct Goal {
     double speed;
-    bool ramp;
+    std::vector<std::pair<double, double>> schedule;  // empty: held
   };
   std::vector<Goal> goals;
-  for (double speed : settings.speeds) goals.push_back({speed, false});
-  if (settings.ramp > 0 && !settings.speeds.empty())
-    goals.push_back({*std::max_element(settings.speeds.begin(), settings.speeds.end()), true});
+  for (double speed : settings.speeds) goals.push_back({speed, {}});
+  if (settings.ramp > 0 && !settings.speeds.empty()) {
+    const double top = *std::max_element(settings.speeds.begin(), settings.speeds.end());
+    goals.push_back({top, rampSchedule(top, settings.seconds)});
+  }
   for (const Ground& ground : settings.grounds) {
     for (const Goal& goal : goals) {
       for (int start = 0; start < settings.starts; ++start) {
-        add(runEpisode(c, gait, settings, goal.speed, start, seed, ground, goal.ramp, body));
+        add(runEpisode(c, gait, settings, goal.speed, start, seed, ground, body, goal.schedule));
       }
     }
   }
@@ -312,7 +319,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     const auto [lo, hi] = std::minmax_element(settings.speeds.begin(), settings.speeds.end());
     for (const Ground& ground : settings.grounds)
       for (int k = 0; k < settings.speedChanges; ++k)
-        add(runEpisode(c, gait, settings, *lo, 0, seed + 104729u * static_cast<uint32_t>(k), ground, false, body,
+        add(runEpisode(c, gait, settings, *lo, 0, speedChangeSeed(seed, k), ground, body,
                        speedChangeSchedule(*lo, *hi, k, seed)));
   }
   for (double speed : settings.speeds)

@@ -119,6 +119,14 @@ constexpr int kSpeedChangeHolds = 9;
 // follow from `seed` and `index` alone, so every candidate meets the same changes.
 std::vector<std::pair<double, double>> speedChangeSchedule(double lo, double hi, int index, uint32_t seed);
 
+// The walk seed of speed-change episode `index` in an evaluation with `seed`: its own pushes and
+// bumps, apart from the held goals' episodes (which vary the seed by start state, 7919 apart).
+uint32_t speedChangeSeed(uint32_t seed, int index);
+
+// The goal of a ramp episode (settings.ramp): from 0 up to `top` at half of `seconds` and back to
+// 0 at its end, as the walking benchmark's ramp does over 60 s.
+std::vector<std::pair<double, double>> rampSchedule(double top, double seconds);
+
 // The scalar settings as a schema-style table (name, bounds, default, unit, description), so
 // they are read, checked and exported the same way as gait parameters. `speeds` is a list and
 // is handled separately (`speeds` in JSON, --speeds on the command line), as is `grounds`
@@ -197,15 +205,13 @@ double timingDeviation(const std::vector<double>& measured, const std::vector<do
 double trackingMisses(int samples, int within);
 
 // One episode: the character walks with `params` on `ground` from start state `start` at goal
-// `speed` (sim::runWalk with the recorder observing every step); with `ramp`, the goal ramps
-// from 0 up to `speed` at half the episode and back to 0 at its end; with a `schedule`, the goal
-// follows it instead of `speed`, and the episode lasts until its last point. `seed` fixes the start nudge's
-// direction, the pushes' phases and the bumps. `body`: the character's body (a creature file's,
-// of the kind `c`), or nullptr for the kind's shipped body.
+// `speed` (sim::runWalk with the recorder observing every step). With a `schedule` (a ramp's,
+// a speed change's), the goal follows it instead of `speed` and the episode lasts until its last
+// point. `seed` fixes the start nudge's direction, the pushes' phases and the bumps. `body`: the
+// character's body (a creature file's, of the kind `c`), or nullptr for the kind's shipped body.
 ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const ObjectiveSettings& settings, double speed, int start, uint32_t seed,
-                          const Ground& ground = Ground{}, bool ramp = false,
-                          const body::Morphology* body = nullptr,
+                          const Ground& ground = Ground{}, const body::Morphology* body = nullptr,
                           const std::vector<std::pair<double, double>>& schedule = {});
 
 // The objective of a parameter set: the mean over every episode: ground × speed × start state,

@@ -217,9 +217,10 @@ TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
   s.seconds = 6.0;
   s.speeds = {2.9};
   const uint32_t seed = 3;
-  const ObjectiveTerms steady = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, false);
+  const ObjectiveTerms steady = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed);
   EXPECT_EQ(steady.fk, 0.0);
-  const ObjectiveTerms ramp = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, true);
+  const ObjectiveTerms ramp = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, nullptr,
+                                         rampSchedule(2.9, s.seconds));
   ASSERT_FALSE(ramp.fell);
   // The same walk as the benchmark runs it: the episode's ramp, start 0 (no nudge, the gait's phase).
   sim::WalkOptions w;
@@ -227,6 +228,7 @@ TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
   w.gait = &preset;
   w.seconds = s.seconds;
   w.speedSchedule = {{0.0, 0.0}, {0.5 * s.seconds, 2.9}, {s.seconds, 0.0}};
+  EXPECT_EQ(rampSchedule(2.9, s.seconds), w.speedSchedule);
   w.seed = seed;
   const sim::WalkResult r = sim::runWalk(w);
   // A ramp to 2.9 m/s in 3 s and back: the trot, which lags so steep a ramp and is walked about
@@ -236,7 +238,8 @@ TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
   EXPECT_EQ(ramp.fk, trackingMisses(r.trackingSamples, r.trackingWithin));
   // Weighted into the total, and nothing else moves.
   s.wk = 100;
-  const ObjectiveTerms weighted = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, true);
+  const ObjectiveTerms weighted = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, nullptr,
+                                         rampSchedule(2.9, s.seconds));
   EXPECT_EQ(weighted.fk, ramp.fk);
   EXPECT_DOUBLE_EQ(weighted.total - ramp.total, 100 * ramp.fk);
   // In the mean over a steady episode and a ramp episode, as every term.
@@ -270,7 +273,7 @@ TEST(OptimizeObjective, SpeedChangeEpisodesAlternateBetweenTheSlowestAndFastestG
   ObjectiveSettings s;
   s.seconds = 3.0;
   s.speeds = {1.0, 0.3};
-  const ObjectiveTerms changing = runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11, Ground{}, false, nullptr, a);
+  const ObjectiveTerms changing = runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11, Ground{}, nullptr, a);
   ASSERT_FALSE(changing.fell);
   EXPECT_NEAR(changing.seconds, a.back().first, 0.01);
   const ObjectiveTerms held = runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11);
@@ -283,10 +286,11 @@ TEST(OptimizeObjective, SpeedChangeEpisodesAlternateBetweenTheSlowestAndFastestG
   const ObjectiveTerms without = evaluate(gait::Character::Biped, preset, s, 11);
   s.speedChanges = 2;
   const ObjectiveTerms with = evaluate(gait::Character::Biped, preset, s, 11);
-  const double expected = 2 * s.seconds + runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11, Ground{}, false,
-                                                     nullptr, speedChangeSchedule(0.3, 1.0, 0, 11)).seconds +
-                          runEpisode(gait::Character::Biped, preset, s, 0.3, 0, 11 + 104729u, Ground{}, false, nullptr,
-                                     speedChangeSchedule(0.3, 1.0, 1, 11)).seconds;
+  EXPECT_NE(speedChangeSeed(11, 0), speedChangeSeed(11, 1));
+  double expected = 2 * s.seconds;
+  for (int k = 0; k < 2; ++k)
+    expected += runEpisode(gait::Character::Biped, preset, s, 0.3, 0, speedChangeSeed(11, k), Ground{}, nullptr,
+                           speedChangeSchedule(0.3, 1.0, k, 11)).seconds;
   EXPECT_NEAR(without.seconds, 2 * s.seconds, 0.02);
   EXPECT_NEAR(with.seconds, expected, 1e-9);
 }

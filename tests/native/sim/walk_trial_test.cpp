@@ -513,7 +513,7 @@ TEST(SpeedRange, TheBipedRunsAndTheQuadrupedTrotsAtTheTopOfTheirRange) {
 // 3.6 m/s its preset's canter keys, the feet striking one after another with all four off the
 // ground for a while each stride, within 10 % of the goal (its fastest key sits near the speed it
 // runs, with speed tracking making up the rest: controller-notes §49, §54). Over 30 s from rest:
-// 3.34 and 3.41 m/s, flight 13 % and 11 %.
+// 3.32 and 3.40 m/s, flight 13 % and 11 %.
 TEST(SpeedRange, TheQuadrupedCantersAtTheTopOfItsRange) {
   WalkOptions o;
   o.character = Character::Quadruped;
@@ -577,9 +577,9 @@ TEST(QuadrupedGaits, TheCanterIsLeftWhereItsKeysSay) {
 
 // Changes back and forth between the trot and the canter, as the walking benchmark's 2.2 ↔ 3.5 m/s
 // trial makes them: the goal changes 9 times, held 1.1 to 3.9 s, from 12 start phases. Measured:
-// 1 of 12 runs falls (1 before the canter's keys were rearranged for these changes, §54); 5 with
-// the canter left where its cycle starts, 9 before speed tracking's trim was reset at a change of
-// gait and its error bounded (controller-notes §50, §52).
+// none of 12 runs falls (1 before the canter's keys were rearranged for these changes and the
+// trot's bridge key slowed, §54); 5 with the canter left where its cycle starts, 9 before speed
+// tracking's trim was reset at a change of gait and its error bounded (controller-notes §50, §52).
 TEST(QuadrupedGaits, ChangesBetweenTrotAndCanterFallInAtMostOneRunInSix) {
   WalkOptions o;
   o.character = Character::Quadruped;

@@ -219,8 +219,9 @@ TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
   const uint32_t seed = 3;
   const ObjectiveTerms steady = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed);
   EXPECT_EQ(steady.fk, 0.0);
-  const ObjectiveTerms ramp = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, nullptr,
-                                         rampSchedule(2.9, s.seconds));
+  const std::vector<std::pair<double, double>> schedule = rampSchedule(2.9, s.seconds);
+  const ObjectiveTerms ramp =
+      runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, nullptr, schedule);
   ASSERT_FALSE(ramp.fell);
   // The same walk as the benchmark runs it: the episode's ramp, start 0 (no nudge, the gait's phase).
   sim::WalkOptions w;
@@ -228,7 +229,7 @@ TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
   w.gait = &preset;
   w.seconds = s.seconds;
   w.speedSchedule = {{0.0, 0.0}, {0.5 * s.seconds, 2.9}, {s.seconds, 0.0}};
-  EXPECT_EQ(rampSchedule(2.9, s.seconds), w.speedSchedule);
+  EXPECT_EQ(schedule, w.speedSchedule);
   w.seed = seed;
   const sim::WalkResult r = sim::runWalk(w);
   // A ramp to 2.9 m/s in 3 s and back: the trot, which lags so steep a ramp and is walked about
@@ -238,8 +239,8 @@ TEST(OptimizeObjective, TrackingIsTheRampCriterionsShareOfMisses) {
   EXPECT_EQ(ramp.fk, trackingMisses(r.trackingSamples, r.trackingWithin));
   // Weighted into the total, and nothing else moves.
   s.wk = 100;
-  const ObjectiveTerms weighted = runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, nullptr,
-                                         rampSchedule(2.9, s.seconds));
+  const ObjectiveTerms weighted =
+      runEpisode(gait::Character::Quadruped, preset, s, 2.9, 0, seed, Ground{}, nullptr, schedule);
   EXPECT_EQ(weighted.fk, ramp.fk);
   EXPECT_DOUBLE_EQ(weighted.total - ramp.total, 100 * ramp.fk);
   // In the mean over a steady episode and a ramp episode, as every term.

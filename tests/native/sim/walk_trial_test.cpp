@@ -579,8 +579,9 @@ TEST(QuadrupedGaits, TheCanterIsLeftWhereItsKeysSay) {
 // Changes back and forth between the trot and the canter, as the walking benchmark's 2.2 ↔ 3.5 m/s
 // trial makes them: the goal changes 9 times, held 1.1 to 3.9 s, from 12 start phases. Measured:
 // none of 12 runs falls (1 before the canter's keys were rearranged for these changes and the
-// trot's bridge key slowed, §54; still none with the trot's 2.1 and 2.8 m/s keys moved, §55, §56); 5 with the canter left where its cycle starts, 9 before speed
-// tracking's trim was reset at a change of gait and its error bounded (controller-notes §50, §52).
+// trot's bridge key slowed, §54; still none with the trot's 2.1 and 2.8 m/s keys moved, §55,
+// §56); 5 with the canter left where its cycle starts, 9 before speed tracking's trim was reset at
+// a change of gait and its error bounded (controller-notes §50, §52).
 TEST(QuadrupedGaits, ChangesBetweenTrotAndCanterFallInAtMostOneRunInSix) {
   WalkOptions o;
   o.character = Character::Quadruped;

@@ -117,10 +117,15 @@ if (!existsSync(cli)) {
 // for the quadruped; a second ramp climbs to the gait's fastest speed key where that is higher,
 // `fastestKey`). `sweepTo`: the sweep's last goal, beyond the fastest gait the criteria name
 // (the biped's run at 2.5 m/s, the quadruped's canter or gallop at 3.5 m/s). `cruise`: the speed
-// of the walking push trials.
+// of the walking push trials. `fastTurns`: the turns again at the fastest gaits the criteria name
+// (the biped's run, the quadruped's trot at its top and its canter), at the turn rate the demo's
+// wandering crowd uses (±0.3 rad/s, native/src/sim/wander.h): turning holds across the new range.
 const GOALS = {
-  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }, { speed: 1.0, turn: 0.5 }, { speed: 1.0, turn: -0.5 }], top: 2.5, sweepTo: 2.9, cruise: 0.5 },
-  quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }], top: 2.5, sweepTo: 4.5, cruise: 0.4 },
+  biped: { speeds: [0.5, 1.0], turns: [{ speed: 0.8, turn: 0.3 }, { speed: 0.5, turn: -0.3 }, { speed: 1.0, turn: 0.5 }, { speed: 1.0, turn: -0.5 }],
+    fastTurns: [{ speed: 2.5, turn: 0.3 }, { speed: 2.5, turn: -0.3 }], top: 2.5, sweepTo: 2.9, cruise: 0.5 },
+  quadruped: { speeds: [0.4, 0.8], turns: [{ speed: 0.6, turn: 0.3 }, { speed: 0.6, turn: -0.3 }],
+    fastTurns: [{ speed: 2.5, turn: 0.3 }, { speed: 2.5, turn: -0.3 }, { speed: 3.5, turn: 0.3 }, { speed: 3.5, turn: -0.3 }],
+    top: 2.5, sweepTo: 4.5, cruise: 0.4 },
 };
 // A creature walks the goals of the character its legs make it most like: a single pair (the
 // bird) the biped's, more the quadruped's.
@@ -210,7 +215,8 @@ report.characters ??= {};
 const hasTerrain = only.includes('criteria') ? terrainSupported() : true;
 
 async function measureCriteria(character) {
-  const { speeds: SPEEDS, turns: TURNS } = GOALS[character];
+  const { speeds: SPEEDS, turns: slowTurns, fastTurns = [] } = GOALS[character];
+  const TURNS = [...slowTurns, ...fastTurns];
   process.stderr.write(`${character}: criteria (straight walks, turns, slope and bumps, starts)\n`);
   const straightP = Promise.all(SPEEDS.map((speed) => walkAsync(character, ['--speed', speed, '--seconds', seconds])));
   const turnsP = Promise.all(TURNS.map((t) => walkAsync(character, ['--speed', t.speed, '--turn', t.turn, '--seconds', seconds])));

@@ -36,6 +36,8 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"startPhases", 0, 1, "1", "1: start states after the first also begin at their own gait phase, as a crowd starts", true},
         s.startPhases);
   visit({"turnRate", -3, 3, "rad/s", "goal turn rate"}, s.turnRate);
+  visit({"turnBothWays", 0, 1, "1", "1: odd start states turn the other way (−turnRate), so a search meets turns to both sides", true},
+        s.turnBothWays);
   visit({"pushImpulse", 0, 1000, "N·s", "pushes at the leg frame during an episode (0: none)"}, s.pushImpulse);
   visit({"pushEvery", 0.5, 60, "s", "time between pushes, phase jittered"}, s.pushEvery);
   visit({"pushDuration", 0, 0.3, "s", "how long each push lasts (0: in one step; Yin et al. 2007 push for 0.2 s)"},
@@ -170,6 +172,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   // left" is of that length.
   ObjectiveSettings episode = settings;
   if (!schedule.empty()) episode.seconds = schedule.back().first;
+  episode.turnRate = episodeTurnRate(settings, start);
   sim::WalkOptions w;
   w.body = body;
   w.terrain = ground.terrain;
@@ -178,7 +181,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   w.gait = &gait;
   w.speed = speed;
   w.speedSchedule = schedule;
-  w.turnRate = settings.turnRate;
+  w.turnRate = episode.turnRate;
   w.seconds = episode.seconds;
   w.pushImpulse = settings.pushImpulse;
   w.pushEvery = settings.pushEvery;
@@ -212,6 +215,10 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   const sim::WalkResult r = sim::runWalk(w);
   return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig), r.flightFraction,
                          trackingMisses(r.trackingSamples, r.trackingWithin));
+}
+
+double episodeTurnRate(const ObjectiveSettings& settings, int start) {
+  return settings.turnBothWays > 0 && start % 2 == 1 ? -settings.turnRate : settings.turnRate;
 }
 
 std::vector<std::pair<double, double>> speedChangeSchedule(double lo, double hi, int index, uint32_t seed) {

@@ -87,6 +87,10 @@ struct ObjectiveSettings {
   // not at the gait's own start; 0 (default): every start at the gait's own phase.
   double startPhases = 0.0;
   double turnRate = 0.0;         // goal turn rate, rad/s
+  // 1: start states 1, 3, 5… turn at −turnRate, the others at turnRate, so that a search meets
+  // turns to both sides (a gait that is not left-right symmetric, such as a canter with its
+  // lead, can turn well one way and fall the other); 0 (default): every episode at turnRate.
+  double turnBothWays = 0.0;
   double pushImpulse = 0.0;      // N·s pushes at the leg frame during the episode (0 = none)
   double pushEvery = 2.0;        // s between pushes, phase jittered
   double pushDuration = 0.0;     // s each push lasts (0: the whole impulse in one step)
@@ -110,6 +114,9 @@ struct ObjectiveSettings {
   // these are the episodes that meet the change; the velocity term follows the goal.
   int speedChanges = 0;
 };
+
+// The goal turn rate of the episodes of start state `start` (settings.turnBothWays).
+double episodeTurnRate(const ObjectiveSettings& settings, int start);
 
 // Goals held in one speed-change episode (the walking benchmark's gait-change trial holds 9).
 constexpr int kSpeedChangeHolds = 9;

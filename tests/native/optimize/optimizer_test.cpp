@@ -420,6 +420,29 @@ TEST(OptimizeObjective, StartPhasesGiveLaterStartsTheirOwnPhase) {
   EXPECT_NE(secondPhased.total, second.total);  // the second start at phase 0.618
 }
 
+// turnBothWays: odd start states turn at −turnRate, so that a search of a gait that is not
+// left-right symmetric (a canter with its lead) meets turns to both sides.
+TEST(OptimizeObjective, TurnBothWaysTurnsOddStartsTheOtherWay) {
+  using gaitlab::gait::Character;
+  ObjectiveSettings s;
+  s.seconds = 2.0;
+  s.turnRate = 0.5;
+  const gaitlab::gait::Gait g = gaitlab::gait::defaultGait(Character::Biped);
+  const ObjectiveTerms leftFirst = runEpisode(Character::Biped, g, s, 0.5, 0, 1);
+  const ObjectiveTerms leftSecond = runEpisode(Character::Biped, g, s, 0.5, 1, 1);
+  s.turnRate = -0.5;
+  const ObjectiveTerms rightSecond = runEpisode(Character::Biped, g, s, 0.5, 1, 1);
+  s.turnRate = 0.5;
+  s.turnBothWays = 1.0;
+  EXPECT_EQ(episodeTurnRate(s, 0), 0.5);
+  EXPECT_EQ(episodeTurnRate(s, 1), -0.5);
+  EXPECT_EQ(episodeTurnRate(s, 2), 0.5);
+  EXPECT_EQ(runEpisode(Character::Biped, g, s, 0.5, 0, 1).total, leftFirst.total);
+  const ObjectiveTerms bothSecond = runEpisode(Character::Biped, g, s, 0.5, 1, 1);
+  EXPECT_EQ(bothSecond.total, rightSecond.total);  // walked, and judged, turning right
+  EXPECT_NE(bothSecond.total, leftSecond.total);
+}
+
 TEST(OptimizeObjective, SettingsAreCheckedAgainstTheirBounds) {
   ObjectiveSettings s;
   EXPECT_EQ(setSetting(s, "wr", 4.0), "");

@@ -176,6 +176,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   comVelocity /= mass;
   comPosition /= mass;
   com_ = comPosition;
+  boundTurnLead(comVelocity);
   Vector3d velocityH = worldToHeading(yaw, comVelocity);
   velocityH.y() = 0;
   desiredVelocity_ = rampDesiredVelocity(desiredVelocity_, Vector3d(0, 0, goal_.speed),
@@ -323,6 +324,21 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   }
 
   finishTorques(s, torques);
+}
+
+void Controller::boundTurnLead(const Vector3d& comVelocity) {
+  // maxTurnSlip (params.h): the body slides sideways past its heading at v·sin(lead), where lead
+  // is how far the goal heading is ahead of the path. A turn that runs ahead of what the stance
+  // can follow is held back to asin(maxTurnSlip / v): the heading then turns as fast as the
+  // velocity does. Only the lead in the turn's direction is bounded (a body pushed off its path,
+  // or not turning, is left to the balance feedback), and at speeds below the bound nothing is.
+  if (goal_.turnRate == 0.0) return;
+  const double speed = std::hypot(comVelocity.x(), comVelocity.z());
+  if (speed <= params_.maxTurnSlip) return;
+  const double path = std::atan2(comVelocity.x(), comVelocity.z());  // heading.h: yaw of +z
+  const double lead = wrapAngle(desiredHeading_ - path);
+  const double bound = std::asin(params_.maxTurnSlip / speed);
+  if (lead * goal_.turnRate > 0 && std::abs(lead) > bound) desiredHeading_ = wrapAngle(path + std::copysign(bound, lead));
 }
 
 Vector3d Controller::frameOrientationPd(int f, const CharacterState& s, double phase) const {

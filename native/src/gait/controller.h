@@ -116,6 +116,9 @@ class Controller {
   // Characters with more than one leg frame: stance forces for the whole body (stance_forces.h).
   void bodyStance(const CharacterState& s, double yaw, const Eigen::Vector3d& com,
                   const Eigen::Vector3d& comVelocity, double phase, Eigen::Vector3d* torques);
+  // maxTurnSlip (params.h): holds the goal heading at most asin(maxTurnSlip / v) ahead of the
+  // path of the centre of mass while the goal turns.
+  void boundTurnLead(const Eigen::Vector3d& comVelocity);
   // Leg frame f's orientation PD (eq. 3.4) and height force F_h (§3.1.4), world.
   Eigen::Vector3d frameOrientationPd(int f, const CharacterState& s, double phase) const;
   Eigen::Vector3d heightForce(int f, const CharacterState& s, double phase) const;

@@ -63,6 +63,9 @@ struct JointGains {
   double maxTorque = 0;          // N·m, clamp per joint
 };
 
+// maxTurnSlip at or above this bounds nothing: no character is given a goal faster than 5 m/s.
+constexpr double kNoTurnSlipBound = 5.0;
+
 struct GaitParams {
   double period = 1;        // T, seconds (§3.1.1)
   double maxAcceleration = 1;  // m/s², bound on the desired-velocity ramp (§3.1.6)
@@ -88,6 +91,13 @@ struct GaitParams {
   // Standing (v_d = 0) is always below it. The biped's walk with double support steps at about
   // 0.45 m/s unless the trim slows it, and needs it down to 0.05 (docs/controller-notes.md §48).
   double speedTrackedFrom = 0.15;
+  // Turning (beyond the thesis): while the goal turns, its heading is held at most
+  // asin(maxTurnSlip / v) ahead of the direction the centre of mass travels at speed v, so the
+  // body slides sideways past its own heading at most this fast (m/s). A body told to turn yaws
+  // at once but its velocity turns only as fast as its stance feet can push it round; the canter,
+  // mostly on one foot, could not, and slid out of the turn until it rolled over
+  // (docs/controller-notes.md §59). kNoTurnSlipBound (schemas before 10): no bound.
+  double maxTurnSlip = 5.0;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the
   // one place every change was taken in schemas before 9. The quadruped's canter falls in the

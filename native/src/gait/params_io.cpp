@@ -177,6 +177,11 @@ void migrateParams(int version, json* params) {
     // 0, the cycle's start, is where every change was taken).
     if (!params->contains("transitionPhase")) (*params)["transitionPhase"] = 0.0;
   }
+  if (version < 10) {
+    // 10: how far a turn's heading may lead the body's path, per key (maxTurnSlip; 5 m/s bounds
+    // nothing, as before).
+    if (!params->contains("maxTurnSlip")) (*params)["maxTurnSlip"] = kNoTurnSlipBound;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

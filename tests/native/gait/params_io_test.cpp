@@ -160,6 +160,7 @@ constexpr AddedField kAddedFields[] = {
     {7, "maxSpeedTrim", 0.5},
     {8, "speedTrackedFrom", 0.15},
     {9, "transitionPhase", 0.0},
+    {10, "maxTurnSlip", 5.0},
 };
 
 // The preset of `c` as a file of schema `version` would have it: the fields later schemas added
@@ -215,6 +216,13 @@ TEST(GaitFile, AVersion8FileIsMigratedToChangingGaitAtTheCycleStart) {
   // parameter of each key (transitionPhase); every change before it was taken where the cycle
   // starts, so a version-8 file loads with 0 in every key and nothing else moved.
   for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 8);
+}
+
+TEST(GaitFile, AVersion9FileIsMigratedToTurningUnbounded) {
+  // Schema 10 bounded how far a turn's heading may lead the body's path, per key (maxTurnSlip);
+  // before it nothing bounded it, which 5 m/s (kNoTurnSlipBound) reproduces, so a version-9 file
+  // loads with 5 in every key and nothing else moved.
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 9);
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

@@ -2,6 +2,7 @@
 // walking benchmark, bench/walking.mjs), and the physics of the stance leg they rest on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "gait/defaults.h"
 #include "gait/gait_transition.h"
+#include "gait/heading.h"
 #include "gait/params_io.h"
 #include "sim/simulation.h"
 #include "sim/walk_trial.h"
@@ -528,6 +530,62 @@ TEST(SpeedRange, TheQuadrupedCantersAtTheTopOfItsRange) {
     EXPECT_GT(canter.flightFraction, 0.05) << "goal " << goal;
     EXPECT_NEAR(canter.meanSpeed, goal, 0.1 * goal) << "goal " << goal;
   }
+}
+
+// Turning at a canter (controller-notes §59): told to turn, the body yaws at once, but its
+// velocity turns only as fast as its stance feet push it round, and the canter, mostly on one
+// foot, slid out of the turn until it rolled over. The canter's keys bound how far the turn's
+// heading may lead the path (maxTurnSlip 0.4 m/s: asin(0.4 / v) ahead): at 3.5 m/s, told to turn
+// at ±0.3 rad/s, it no longer falls but turns more slowly than told (0.07–0.19 rad/s measured);
+// with no bound, as before schema 10, it falls. While turning, the heading never leads the path
+// by more than the bound.
+TEST(Turning, TheCanterTurnsWithItsHeadingHeldNearItsPath) {
+  const auto walk = [](const gaitlab::gait::Gait& gait, double turn, double phase, double* largestExcess) {
+    WalkOptions o;
+    o.character = Character::Quadruped;
+    o.gait = &gait;
+    o.speed = 3.5;
+    o.turnRate = turn;
+    o.seconds = 30;
+    o.startPhase = phase;
+    if (largestExcess) {
+      o.observe = [&](const Simulation& sim) {
+        const gaitlab::physics::Character& ch = sim.character(0);
+        const gaitlab::body::Morphology& m = ch.morphology();
+        Eigen::Vector3d v = Eigen::Vector3d::Zero();
+        double mass = 0;
+        for (size_t i = 0; i < m.segments.size(); ++i) {
+          v += m.segments[i].mass * ch.segmentState(static_cast<int>(i)).linearVelocity;
+          mass += m.segments[i].mass;
+        }
+        v /= mass;
+        const double speed = std::hypot(v.x(), v.z());
+        const double slip = sim.controller(0).params().maxTurnSlip;
+        if (speed <= slip + 0.2) return;  // the bound is asin(slip / v): meaningless near v = slip
+        const double lead = gaitlab::gait::wrapAngle(sim.controller(0).desiredHeading() - std::atan2(v.x(), v.z()));
+        if (lead * turn > 0) *largestExcess = std::max(*largestExcess, std::abs(lead) - std::asin(slip / speed));
+      };
+    }
+    return runWalk(o);
+  };
+  const gaitlab::gait::Gait shipped = gaitlab::gait::defaultGait(Character::Quadruped);
+  gaitlab::gait::Gait unbounded = shipped;
+  for (gaitlab::gait::SpeedKey& k : unbounded.keys) k.params.maxTurnSlip = gaitlab::gait::kNoTurnSlipBound;
+  int unboundedFalls = 0;
+  for (const double turn : {0.3, -0.3}) {
+    for (const double phase : {0.0, 0.5}) {
+      double excess = 0;
+      const auto r = walk(shipped, turn, phase, &excess);
+      EXPECT_FALSE(r.fell) << "turn " << turn << ", phase " << phase << ": fell after " << r.fallTime << " s";
+      // It turns the way it is told, more slowly: at least a sixth of the rate, less than all of it.
+      EXPECT_GT(r.yawRate / turn, 1.0 / 6) << "turn " << turn << ", phase " << phase << ": yaw " << r.yawRate;
+      EXPECT_LT(r.yawRate / turn, 1.0) << "turn " << turn << ", phase " << phase << ": yaw " << r.yawRate;
+      // One fixed step of the body's velocity changing after the bound was applied.
+      EXPECT_LT(excess, 0.05) << "turn " << turn << ", phase " << phase;
+      unboundedFalls += walk(unbounded, turn, phase, nullptr).fell ? 1 : 0;
+    }
+  }
+  EXPECT_GE(unboundedFalls, 3);
 }
 
 // Speed tracking's trim belongs to the gait it was integrated under (controller-notes §50): the

@@ -191,8 +191,8 @@ describe('the demo crowd', { timeout: TEST_TIMEOUT * 4 }, () => {
     await page.waitForFunction(() => window.gaitlab.stats().selected === 2, null, { timeout: PAGE_TIMEOUT });
     assert.equal(await label(), 'biped #2 only');
     assert.equal(await speedField('dog speed').isDisabled(), true, 'a quadruped speed does not apply to a biped');
-    await speedField('turn').fill('10');
-    await speedField('turn').press('Enter');
+    await speedField('turn (°/s)').fill('10');
+    await speedField('turn (°/s)').press('Enter');
     await page.waitForFunction(() => window.gaitlab.characters().find((c) => c.id === 2).goal.turn > 0.1, null, { timeout: PAGE_TIMEOUT });
     goals = await characters(page);
     for (const c of goals.filter((x) => x.id !== 2)) assert.equal(c.goal.turn, 0, `#${c.id} is not turned`);

@@ -94,15 +94,15 @@ Table build(Character c) {
          "speed tracking: the desired speed from which the trim integrates the speed error; below "
          "it the trim fades and the capture-point placement governs",
          proto.speedTrackedFrom);
+  scalar("transitionPhase", kTiming, {0, 1}, "1",
+         "gait phase of this key's cycle at which a change to another footfall pattern (a gait "
+         "transition) is taken up; 0: where the cycle starts",
+         proto.transitionPhase);
   scalar("maxTurnSlip", kLegFrame, {0.1, kNoTurnSlipBound}, "m/s",
          "turning: the goal heading leads the direction the body travels by at most "
          "asin(maxTurnSlip / speed), so the body slides sideways past its heading at most this "
          "fast while it turns; 5: no bound",
          proto.maxTurnSlip);
-  scalar("transitionPhase", kTiming, {0, 1}, "1",
-         "gait phase of this key's cycle at which a change to another footfall pattern (a gait "
-         "transition) is taken up; 0: where the cycle starts",
-         proto.transitionPhase);
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

@@ -97,7 +97,7 @@ struct GaitParams {
   // at once but its velocity turns only as fast as its stance feet can push it round; the canter,
   // mostly on one foot, could not, and slid out of the turn until it rolled over
   // (docs/controller-notes.md §59). kNoTurnSlipBound (schemas before 10): no bound.
-  double maxTurnSlip = 5.0;
+  double maxTurnSlip = kNoTurnSlipBound;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the
   // one place every change was taken in schemas before 9. The quadruped's canter falls in the

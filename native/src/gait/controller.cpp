@@ -494,6 +494,13 @@ void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
     offset.y() = 0;
     p1 += capture * (com_ + headingToWorld(yaw, offset) - p1);
   }
+  // While turning, outwards from the turn by turnPlacement · h v ω / g (params.h): where the ground
+  // force that carries the body round the turn passes through its centre of mass.
+  if (params_.turnPlacement > 0 && goal_.turnRate != 0.0) {
+    const double h = std::max(0.1, com_.y() - s.ground.at(com_.x(), com_.z()));
+    const double speed = std::hypot(velocityH.x(), velocityH.z());
+    p1 -= params_.turnPlacement * (h * speed * goal_.turnRate / 9.81) * headingLeft(yaw);
+  }
   p1.y() = s.ground.at(p1.x(), p1.z());
   const Vector3d footTarget = swingFootTarget(liftOff_[l], p1, phi, p.swingEase, p.stepHeight,
                                               state.lateStrikeOffset);

@@ -98,6 +98,15 @@ struct GaitParams {
   // mostly on one foot, could not, and slid out of the turn until it rolled over
   // (docs/controller-notes.md §59). kNoTurnSlipBound (schemas before 10): no bound.
   double maxTurnSlip = kNoTurnSlipBound;
+  // Turning (beyond the thesis): the strike points move outwards from the turn by
+  // turnPlacement · h v ω / g, where h is the centre of mass's height, v its speed and ω the goal's
+  // turn rate. On its stance foot the body is an inverted pendulum: the ground force that turns
+  // it (centripetal, m v ω) without a moment about the centre of mass passes through it, so the
+  // foot lies h v ω / g outside it (1 is that lean exactly). Feet landing under the body could
+  // push it round only by rolling it, and the whole-body stance (stance_forces.h) gave that force
+  // up to the roll: the canter turned at a third of its goal (docs/controller-notes.md §60).
+  // 0 (schemas before 11): feet placed as if going straight.
+  double turnPlacement = 0.0;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the
   // one place every change was taken in schemas before 9. The quadruped's canter falls in the

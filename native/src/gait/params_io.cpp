@@ -182,6 +182,11 @@ void migrateParams(int version, json* params) {
     // nothing, as before).
     if (!params->contains("maxTurnSlip")) (*params)["maxTurnSlip"] = kNoTurnSlipBound;
   }
+  if (version < 11) {
+    // 11: strike points moved outwards from a turn, per key (turnPlacement; 0 places them as if
+    // going straight, as before).
+    if (!params->contains("turnPlacement")) (*params)["turnPlacement"] = 0.0;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

@@ -103,6 +103,11 @@ Table build(Character c) {
          "asin(maxTurnSlip / speed), so the body slides sideways past its heading at most this "
          "fast while it turns; 5: no bound",
          proto.maxTurnSlip);
+  scalar("turnPlacement", kLegFrame, {0, 2}, "1",
+         "turning: the strike points move outwards from the turn by this many times h·v·ω/g, the "
+         "offset at which the ground force that turns the body passes through its centre of mass "
+         "(h: its height, v: its speed, ω: the turn rate); 0: placed as if going straight",
+         proto.turnPlacement);
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

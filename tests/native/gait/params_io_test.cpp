@@ -161,6 +161,7 @@ constexpr AddedField kAddedFields[] = {
     {8, "speedTrackedFrom", 0.15},
     {9, "transitionPhase", 0.0},
     {10, "maxTurnSlip", 5.0},
+    {11, "turnPlacement", 0.0},
 };
 
 // The preset of `c` as a file of schema `version` would have it: the fields later schemas added
@@ -223,6 +224,13 @@ TEST(GaitFile, AVersion9FileIsMigratedToTurningUnbounded) {
   // before it nothing bounded it, which 5 m/s (kNoTurnSlipBound) reproduces, so a version-9 file
   // loads with 5 in every key and nothing else moved.
   for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 9);
+}
+
+TEST(GaitFile, AVersion10FileIsMigratedToFeetPlacedAsIfGoingStraight) {
+  // Schema 11 moved the strike points outwards from a turn, per key (turnPlacement); before it
+  // they were placed as if going straight, which 0 reproduces, so a version-10 file loads with 0
+  // in every key and nothing else moved.
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 10);
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

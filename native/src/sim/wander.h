@@ -10,9 +10,9 @@
 //   wander       a slow, smooth drift of heading, different for every character, so that the
 //                crowd does not walk in lockstep circles.
 // The result is clamped to the turn rate both presets are measured to follow (README, Walking:
-// ±0.3 rad/s, yaw rates within 1 % of the goal), but for the quadruped's canter: its keys hold a
-// turn's heading near its path (maxTurnSlip, gait/params.h), so it turns at about 0.1 rad/s
-// and runs wider than the arena before it comes round. Everything is a function of the characters'
+// ±0.3 rad/s, yaw rates within 1 % of the goal), but for the quadruped's canter, which turns at
+// 0.19–0.3 rad/s when told 0.3 (turnPlacement and maxTurnSlip, gait/params.h) and so runs a
+// little wider than the arena before it comes round. Everything is a function of the characters'
 // positions, headings, ids and the step index, computed serially between fixed steps, so a run
 // is as deterministic and replayable as one without wandering.
 #pragma once

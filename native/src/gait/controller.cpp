@@ -363,6 +363,10 @@ Vector3d Controller::heightForce(int f, const CharacterState& s, double phase) c
   return Vector3d(0, p.heightKp * (height - frame.position.y()) - p.heightKd * frame.linearVelocity.y(), 0);
 }
 
+double Controller::comHeight(const CharacterState& s) const {
+  return std::max(0.1, com_.y() - s.ground.at(com_.x(), com_.z()));
+}
+
 void Controller::finishTorques(const CharacterState& s, Vector3d* torques) const {
   // Twist scaling on swing hips only: a stance leg cannot spin about its own axis (knee hinge,
   // ankle and the foot on the ground lock it), and its hip twist is what turns the leg frame.
@@ -488,8 +492,7 @@ void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
   const double capture = p.capturePlacement *
                          std::max(0.0, 1.0 - std::abs(desiredVelocity_.z()) / std::max(1e-3, p.captureBlendSpeed));
   if (capture > 0) {
-    const double h = std::max(0.1, com_.y() - s.ground.at(com_.x(), com_.z()));
-    Vector3d offset = (velocityH - hold_) * std::sqrt(h / 9.81);
+    Vector3d offset = (velocityH - hold_) * std::sqrt(comHeight(s) / 9.81);
     offset.x() += g.side * p.captureSideways;
     offset.y() = 0;
     p1 += capture * (com_ + headingToWorld(yaw, offset) - p1);
@@ -497,9 +500,8 @@ void Controller::swingLeg(int l, const CharacterState& s, double dt, double yaw,
   // While turning, outwards from the turn by turnPlacement · h v ω / g (params.h): where the ground
   // force that carries the body round the turn passes through its centre of mass.
   if (params_.turnPlacement > 0 && goal_.turnRate != 0.0) {
-    const double h = std::max(0.1, com_.y() - s.ground.at(com_.x(), com_.z()));
     const double speed = std::hypot(velocityH.x(), velocityH.z());
-    p1 -= params_.turnPlacement * (h * speed * goal_.turnRate / 9.81) * headingLeft(yaw);
+    p1 -= params_.turnPlacement * (comHeight(s) * speed * goal_.turnRate / 9.81) * headingLeft(yaw);
   }
   p1.y() = s.ground.at(p1.x(), p1.z());
   const Vector3d footTarget = swingFootTarget(liftOff_[l], p1, phi, p.swingEase, p.stepHeight,

@@ -122,6 +122,9 @@ class Controller {
   // Leg frame f's orientation PD (eq. 3.4) and height force F_h (§3.1.4), world.
   Eigen::Vector3d frameOrientationPd(int f, const CharacterState& s, double phase) const;
   Eigen::Vector3d heightForce(int f, const CharacterState& s, double phase) const;
+  // Height of the centre of mass above the ground under it (m, at least 0.1): the inverted
+  // pendulum's length in the capture-point and turn placements.
+  double comHeight(const CharacterState& s) const;
   // Standing on planted feet (gait/standing.cpp, beyond the thesis). Walking → Settling (goal 0
   // and slow: the gait player holds every foot that lands) → Planted (every foot down: the
   // body held in a pose over its feet) → Walking (the goal moves, or the capture point leaves

@@ -24,6 +24,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"wt", 0, 1000, "1", "w_t: weight of footfall timing deviation f_t, duty factors measured against configured (ours)"}, s.wt);
   visit({"wf", 0, 1000, "1", "w_f: weight of flight f_f, the share of time with no foot on the ground: a walk has none (ours)"}, s.wf);
   visit({"wk", 0, 1000, "1", "w_k: weight of speed tracking f_k, the share of a ramp episode's 2 s speed samples off the goal by more than 10 % (the walking benchmark's ramp criterion; ours)"}, s.wk);
+  visit({"ws", 0, 1000, "s²/m²", "w_s: weight of speed deviation f_s, the horizontal speed against the goal speed whatever its direction: unlike f_v, not lowered by a slower turn (ours)"}, s.ws);
   visit({"fallPenalty", 0, 1e6, "1", "added for a fall, scaled by 1 + the share of the episode left"},
         s.fallPenalty);
   visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
@@ -38,6 +39,8 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"turnRate", -3, 3, "rad/s", "goal turn rate"}, s.turnRate);
   visit({"turnBothWays", 0, 1, "1", "1: odd start states turn the other way (−turnRate), so a search meets turns to both sides", true},
         s.turnBothWays);
+  visit({"turnStraight", 0, 1, "1", "1: start states turn at turnRate, at −turnRate and walk straight in turn, so a search for turning keeps the straight walk", true},
+        s.turnStraight);
   visit({"pushImpulse", 0, 1000, "N·s", "pushes at the leg frame during an episode (0: none)"}, s.pushImpulse);
   visit({"pushEvery", 0.5, 60, "s", "time between pushes, phase jittered"}, s.pushEvery);
   visit({"pushDuration", 0, 0.3, "s", "how long each push lasts (0: in one step; Yin et al. 2007 push for 0.2 s)"},
@@ -136,6 +139,8 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
     const double forwardError = v.z() - goal;
     goalTravel_ += goal * dt_;
     velocitySum_ += forwardError * forwardError + v.x() * v.x();
+    const double speedError = std::hypot(v.x(), v.z()) - goal;
+    speedSum_ += speedError * speedError;
     ++velocityCount_;
     travel_ += v.z() * dt_;
   }
@@ -148,6 +153,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
   const double posture = frameSamples_ ? postureSum_ / frameSamples_ : 0.0;
   t.fd = travel * travel + posture;
   t.fv = velocityCount_ ? velocitySum_ / velocityCount_ : 0.0;
+  t.fs = velocityCount_ ? speedSum_ / velocityCount_ : 0.0;
   t.fa = accelSamples_ ? accelSum_ / accelSamples_ : 0.0;
   t.fr = frameSamples_ ? rotationSum_ / frameSamples_ : 0.0;
   t.ft = ft;
@@ -160,7 +166,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
     t.fall = settings_.fallPenalty * (1.0 + left);
   }
   t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr +
-            settings_.wt * t.ft + settings_.wf * t.ff + settings_.wk * t.fk + t.fall;
+            settings_.wt * t.ft + settings_.wf * t.ff + settings_.wk * t.fk + settings_.ws * t.fs + t.fall;
   return t;
 }
 
@@ -218,6 +224,10 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
 }
 
 double episodeTurnRate(const ObjectiveSettings& settings, int start) {
+  if (settings.turnStraight > 0) {
+    const int way = start % 3;
+    return way == 0 ? settings.turnRate : way == 1 ? -settings.turnRate : 0.0;
+  }
   return settings.turnBothWays > 0 && start % 2 == 1 ? -settings.turnRate : settings.turnRate;
 }
 
@@ -298,6 +308,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     mean.ft += t.ft;
     mean.ff += t.ff;
     mean.fk += t.fk;
+    mean.fs += t.fs;
     mean.fall += t.fall;
     mean.total += t.total;
     mean.seconds += t.seconds;
@@ -332,7 +343,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   for (double speed : settings.speeds)
     for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed, body));
   if (episodes) {
-    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fk, &mean.fall, &mean.total}) *v /= episodes;
+    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fk, &mean.fs, &mean.fall, &mean.total}) *v /= episodes;
   }
   return mean;
 }

@@ -36,6 +36,15 @@
 //        f_v is a per-step error, in which the stride's own swing of the velocity outweighs a
 //        mean 10 % too fast; f_k sees only the mean (docs/controller-notes.md §27).
 //
+// and a seventh, 0 unless weighted (w_s):
+//
+//   f_s  mean over steps after the warm-up of (|v| − goal speed)², (m/s)², |v| the root leg
+//        frame's horizontal speed in whatever direction it goes. In a turning episode f_v also
+//        counts the path's lag behind the goal heading, and a slower gait lowers that: searches
+//        of the canter's turns with f_v alone turned at the told rate by running 2.2 m/s at a
+//        goal of 3.5 (docs/controller-notes.md, "The canter's fastest key searched on turns").
+//        f_s keeps the speed whichever way the body goes.
+//
 // A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
 // any fall scores worse than any walk whose terms stay below fallPenalty, and a later fall
 // scores better than an earlier one, so a search that starts from a falling gait climbs
@@ -74,6 +83,7 @@ struct ObjectiveSettings {
   double wt = 0.0;                                 // w_t of f_t (footfall timing, ours)
   double wf = 0.0;                                 // w_f of f_f (flight: no foot down, ours)
   double wk = 0.0;                                 // w_k of f_k (a ramp's speed tracking, ours)
+  double ws = 0.0;                                 // w_s of f_s (speed whatever the direction, ours)
   double fallPenalty = 100.0;
   double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
   double warmup = 1.0;             // s before travel and velocity are measured
@@ -91,6 +101,12 @@ struct ObjectiveSettings {
   // turns to both sides (a gait that is not left-right symmetric, such as a canter with its
   // lead, can turn well one way and fall the other); 0 (default): every episode at turnRate.
   double turnBothWays = 0.0;
+  // 1: start states cycle through three episodes, turning at turnRate, at −turnRate and walking
+  // straight (start states 0, 3, 6… left for a positive turnRate, 1, 4, 7… right, 2, 5, 8…
+  // straight), so that a search of a gait's turns keeps its straight walk (a search of the
+  // canter's fastest key on turns alone turned, and fell running straight; docs/controller-notes.md,
+  // "The canter's fastest key searched on turns and straight runs"). Overrides turnBothWays.
+  double turnStraight = 0.0;
   double pushImpulse = 0.0;      // N·s pushes at the leg frame during the episode (0 = none)
   double pushEvery = 2.0;        // s between pushes, phase jittered
   double pushDuration = 0.0;     // s each push lasts (0: the whole impulse in one step)
@@ -115,7 +131,7 @@ struct ObjectiveSettings {
   int speedChanges = 0;
 };
 
-// The goal turn rate of the episodes of start state `start` (settings.turnBothWays).
+// The goal turn rate of the episodes of start state `start` (settings.turnBothWays, turnStraight).
 double episodeTurnRate(const ObjectiveSettings& settings, int start);
 
 // Goals held in one speed-change episode (the walking benchmark's gait-change trial holds 9).
@@ -157,8 +173,9 @@ struct ObjectiveTerms {
   double ft = 0;          // footfall timing deviation (duty factors)
   double ff = 0;          // flight: the share of the time with no foot on the ground
   double fk = 0;          // a ramp's speed samples off the goal by more than 10 %, as a share
+  double fs = 0;          // (horizontal speed − goal speed)², whatever the direction
   double fall = 0;        // the fall penalty, 0 if it did not fall
-  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + w_k·f_k + fall
+  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + w_k·f_k + w_s·f_s + fall
   bool fell = false;
   double seconds = 0;     // simulated
 };
@@ -198,6 +215,7 @@ class ObjectiveRecorder {
   std::vector<std::pair<double, double>> schedule_;  // empty: goalSpeed_ throughout
   double travel_ = 0, goalTravel_ = 0;      // along the goal heading, after the warm-up: walked, asked
   double velocitySum_ = 0;  int velocityCount_ = 0;
+  double speedSum_ = 0;  // Σ (|v| − goal)², over the velocity term's steps
   double postureSum_ = 0, accelSum_ = 0, rotationSum_ = 0;
   int frameSamples_ = 0, accelSamples_ = 0;
   std::vector<Eigen::Vector3d> lastVelocity_;

@@ -186,6 +186,24 @@ TEST(OptimizeObjective, VelocityIsMeasuredInTheTurningGoalHeadingFrame) {
   EXPECT_NEAR(t.fa, 0.25 / (9.81 * 9.81), 1e-6);
 }
 
+// The speed term f_s (ours): the horizontal speed against the goal speed, whatever the direction.
+// A walker at the goal speed whose path has fallen behind a turning goal heading scores f_v for
+// the lag, and a slower walker less (what searches of the canter's turns exploited), but f_s is 0
+// for the first and counts the second's lost speed; weighted by w_s into the total.
+TEST(OptimizeObjective, SpeedDeviationIgnoresDirectionAndCountsLostSpeed) {
+  ObjectiveSettings s = settings();
+  const auto sideways = [&](double speed) {
+    return record(s, 1.0, [speed](double t) { return upright({speed * t, kStanding, 0}, {speed, 0, 0}); }, 3.0);
+  };
+  const ObjectiveTerms atGoal = sideways(1.0), slower = sideways(0.5);
+  EXPECT_NEAR(atGoal.fv, 2.0, 1e-12);   // (0 − 1)² forward + 1² sideways
+  EXPECT_NEAR(slower.fv, 1.25, 1e-12);  // (0 − 1)² + 0.5²: lower for the slower walker
+  EXPECT_NEAR(atGoal.fs, 0.0, 1e-12);
+  EXPECT_NEAR(slower.fs, 0.25, 1e-12);
+  s.ws = 4.0;
+  EXPECT_NEAR(sideways(0.5).total - slower.total, 4.0 * 0.25, 1e-9);
+}
+
 // The flight term f_f (ours) is the walk's share of time with no foot down, weighted by w_f into
 // the total: a search for a walk can ask for double support, one for a run leaves w_f at 0.
 TEST(OptimizeObjective, FlightCountsInTheTotalByItsWeight) {
@@ -441,6 +459,29 @@ TEST(OptimizeObjective, TurnBothWaysTurnsOddStartsTheOtherWay) {
   const ObjectiveTerms bothSecond = runEpisode(Character::Biped, g, s, 0.5, 1, 1);
   EXPECT_EQ(bothSecond.total, rightSecond.total);  // walked, and judged, turning right
   EXPECT_NE(bothSecond.total, leftSecond.total);
+}
+
+// turnStraight: start states cycle through a turn at turnRate, one at −turnRate and a straight
+// walk, so that a search of a gait's turns also meets its straight walk.
+TEST(OptimizeObjective, TurnStraightCyclesLeftRightAndStraight) {
+  using gaitlab::gait::Character;
+  ObjectiveSettings s;
+  s.seconds = 2.0;
+  s.turnRate = 0.5;
+  s.turnBothWays = 1.0;  // overridden
+  s.turnStraight = 1.0;
+  for (int start = 0; start < 6; ++start)
+    EXPECT_EQ(episodeTurnRate(s, start), start % 3 == 0 ? 0.5 : start % 3 == 1 ? -0.5 : 0.0) << start;
+  const gaitlab::gait::Gait g = gaitlab::gait::defaultGait(Character::Biped);
+  const ObjectiveTerms straightThird = runEpisode(Character::Biped, g, s, 0.5, 2, 1);
+  ObjectiveSettings straight = s;
+  straight.turnStraight = 0.0;
+  straight.turnBothWays = 0.0;
+  straight.turnRate = 0.0;
+  EXPECT_EQ(straightThird.total, runEpisode(Character::Biped, g, straight, 0.5, 2, 1).total);  // walked straight
+  ObjectiveSettings left = straight;
+  left.turnRate = 0.5;
+  EXPECT_NE(straightThird.total, runEpisode(Character::Biped, g, left, 0.5, 2, 1).total);
 }
 
 TEST(OptimizeObjective, SettingsAreCheckedAgainstTheirBounds) {

@@ -41,8 +41,8 @@
 //   f_s  mean over steps after the warm-up of (|v| − goal speed)², (m/s)², |v| the root leg
 //        frame's horizontal speed in whatever direction it goes. In a turning episode f_v also
 //        counts the path's lag behind the goal heading, and a slower gait lowers that: searches
-//        of the canter's turns with f_v alone turned at the told rate by running 2.2 m/s at a
-//        goal of 3.5 (docs/controller-notes.md, "The canter's fastest key searched on turns").
+//        of the canter's turns with f_v alone turned at the told rate by running 2.0–2.6 m/s at
+//        a goal of 3.5 (docs/controller-notes.md §62).
 //        f_s keeps the speed whichever way the body goes.
 //
 // A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
@@ -104,8 +104,8 @@ struct ObjectiveSettings {
   // 1: start states cycle through three episodes, turning at turnRate, at −turnRate and walking
   // straight (start states 0, 3, 6… left for a positive turnRate, 1, 4, 7… right, 2, 5, 8…
   // straight), so that a search of a gait's turns keeps its straight walk (a search of the
-  // canter's fastest key on turns alone turned, and fell running straight; docs/controller-notes.md,
-  // "The canter's fastest key searched on turns and straight runs"). Overrides turnBothWays.
+  // canter's fastest key on turns alone turned, and fell running straight: docs/controller-notes.md
+  // §62). Overrides turnBothWays.
   double turnStraight = 0.0;
   double pushImpulse = 0.0;      // N·s pushes at the leg frame during the episode (0 = none)
   double pushEvery = 2.0;        // s between pushes, phase jittered

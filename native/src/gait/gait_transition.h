@@ -30,7 +30,10 @@ namespace gaitlab::gait {
 
 // Two keys have different footfall patterns when some leg's step trigger, relative to the first
 // leg's, differs between them by more than this fraction of a cycle (walk and trot differ by a
-// quarter; the trot's own keys, tuned apart, by under a tenth).
+// quarter; the trot's own keys, tuned apart, by under a tenth). Judged from the first leg, so a
+// gait and its mirror image (left and right legs swapped) can be judged differently: the
+// quadruped preset's slow walk keys differ from its trot by 0.150 from the front left leg and by
+// 0.08–0.09 from the right legs (docs/controller-notes.md §63).
 constexpr double kFootfallTolerance = 0.15;
 
 // How far apart two gait phases are on the cycle, in [0, 0.5] cycles (0.95 and 0.02: 0.07).

@@ -9,17 +9,36 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
+double frac(double x) { return x - std::floor(x); }
+
 }  // namespace
 
 double cyclicDistance(double a, double b) { return std::abs(std::remainder(a - b, 1.0)); }
 
+double footfallDistance(const LegParams* a, const LegParams* b, int legs) {
+  // Each leg's trigger move b − a, as a point on the cycle. A shift δ of the whole pattern moves
+  // every point by δ, so the best shift centres the shortest arc that holds them all, and the
+  // farthest leg is then half that arc away: (1 − the widest gap between neighbouring points) / 2.
+  const int n = std::min(legs, kMaxLegs);
+  if (n < 2) return 0;
+  double moves[kMaxLegs];
+  for (int i = 0; i < n; ++i) moves[i] = frac(b[i].stepTrigger - a[i].stepTrigger);
+  std::sort(moves, moves + n);
+  double widestGap = 1.0 - (moves[n - 1] - moves[0]);  // across the cycle's start
+  for (int i = 1; i < n; ++i) widestGap = std::max(widestGap, moves[i] - moves[i - 1]);
+  return (1.0 - widestGap) / 2;
+}
+
 bool footfallDiffers(const LegParams* a, const LegParams* b, int legs) {
-  for (int i = 1; i < std::min(legs, kMaxLegs); ++i) {
-    const double ra = a[i].stepTrigger - a[0].stepTrigger;
-    const double rb = b[i].stepTrigger - b[0].stepTrigger;
-    if (cyclicDistance(ra, rb) > kFootfallTolerance) return true;
-  }
-  return false;
+  const int n = std::min(legs, kMaxLegs);
+  if (footfallDistance(a, b, n) > kFootfallTolerance) return true;
+  if (n <= 2) return false;  // one pair of legs: walk and run blend (gait_transition.h)
+  auto walks = [n](const LegParams* p) {
+    for (int i = 0; i < n; ++i)
+      if (!(p[i].dutyFactor > 0.5)) return false;
+    return true;
+  };
+  return walks(a) != walks(b);
 }
 
 bool phaseReached(double before, double after, double at) {

@@ -1,4 +1,4 @@
-// Probe, built only on request (`ninja -C build/native gaitlab_mirror_log`): is a quadruped's
+// Probe, built only on request (`ninja -C build/native gaitlab_mirror_log`): is a character's
 // gait mirror-symmetric? The body and the controller have no preferred side, so a gait file and
 // its mirror image (every left leg's parameters given to the right leg and the other way round,
 // the leg frames' yaw and roll graphs negated), started at the same gait phase with mirrored
@@ -30,13 +30,19 @@ using namespace gaitlab;
 
 namespace {
 
-// Left and right swapped in a parameter's name (frontLeft.stepTrigger ↔ frontRight.stepTrigger).
-std::string mirroredName(std::string name) {
-  for (auto [from, to] : {std::pair{"Left", "\x01"}, {"Right", "Left"}, {"\x01", "Right"}}) {
-    const size_t at = name.find(from);
-    if (at != std::string::npos) name.replace(at, std::string(from).size(), to);
+// Left and right swapped in a parameter's leg (frontLeft.stepTrigger ↔ frontRight.stepTrigger,
+// left.dutyFactor ↔ right.dutyFactor).
+std::string mirroredName(const std::string& name) {
+  const size_t dot = name.find('.');
+  std::string leg = name.substr(0, dot);
+  for (auto [from, to] : {std::pair{"Left", "Right"}, {"Right", "Left"}, {"left", "right"}, {"right", "left"}}) {
+    const size_t at = leg.find(from);
+    if (at != std::string::npos) {
+      leg.replace(at, std::string(from).size(), to);
+      break;
+    }
   }
-  return name;
+  return dot == std::string::npos ? leg : leg + name.substr(dot);
 }
 
 nlohmann::json mirroredParams(const nlohmann::json& params) {

@@ -1,6 +1,6 @@
 // Probe, built only on request (`ninja -C build/native gaitlab_arena_log`): a crowd of quadrupeds
 // wandering in the demo's arena (sim/wander.h) at one goal speed, and which of them fall
-// (docs/controller-notes.md, "The demo's wandering slows a hard turn").
+// (docs/controller-notes.md, "The demo's wandering slowing a hard turn").
 //
 //   build/native/gaitlab_arena_log SPEED [ARENA_RADIUS] [LAYOUTS] [verbose] > log.txt
 //

@@ -482,7 +482,7 @@ int gl_sim_character_info(void* s, double* out, int capacity) {
     o[GL_INFO_SPEED] = std::hypot(root.linearVelocity.x(), root.linearVelocity.z());
     o[GL_INFO_FALLEN] = S.fallen(i) ? 1 : 0;
     o[GL_INFO_FALLEN_SECONDS] = S.fallenSeconds(i);
-    o[GL_INFO_GOAL_SPEED] = S.goal(i).speed;  // as given: a wanderer may be steered slower
+    o[GL_INFO_GOAL_SPEED] = S.controller(i).goal().speed;
     o[GL_INFO_GOAL_TURN] = S.controller(i).goal().turnRate;
     o[GL_INFO_PHASE] = S.controller(i).player().phase();
     o[GL_INFO_LEGS] = static_cast<double>(S.character(i).morphology().legs.size());

@@ -319,8 +319,7 @@ enum {
   GL_INFO_SPEED,          // horizontal speed of the root leg frame, m/s
   GL_INFO_FALLEN,         // 1 or 0
   GL_INFO_FALLEN_SECONDS, // how long it has been down
-  GL_INFO_GOAL_SPEED,     // m/s, as set (gl_sim_set_goal); a wanderer may be steered slower
-  GL_INFO_GOAL_TURN,      // rad/s it is steered at: as set, or the wandering's turn rate
+  GL_INFO_GOAL_SPEED, GL_INFO_GOAL_TURN,
   GL_INFO_PHASE,          // gait phase in [0, 1)
   GL_INFO_LEGS,           // its number of legs: 2, 4, or a creature's (gl_sim_spawn_creature)
   GL_INFO_FIELDS

@@ -25,10 +25,6 @@ struct Agent {
 
   std::unique_ptr<physics::Character> body;
   gait::Controller controller;
-  // The goal it was given (Simulation::setGoal, a crowd's cruise speed). The controller follows
-  // it, or, while the character wanders, the turn rate and speed wandering steers it at
-  // (sim/wander.h) from it.
-  gait::Goal goal;
   std::vector<gait::BodyState> state;
   std::vector<Eigen::Vector3d> torques;
   bool footContact[gait::kMaxLegs] = {false, false, false, false};

@@ -41,9 +41,10 @@ void applyDragSpring(physics::Character& c, const Drag& drag) {
 }
 
 void Simulation::setGoal(int i, const gait::Goal& goal) {
-  for (int k = i < 0 ? 0 : i; k < characterCount() && (i < 0 || k == i); ++k) {
-    agents_[k]->goal = goal;
-    agents_[k]->controller.setGoal(goal);
+  if (i < 0) {
+    for (auto& a : agents_) a->controller.setGoal(goal);
+  } else if (i < characterCount()) {
+    agents_[i]->controller.setGoal(goal);
   }
 }
 
@@ -144,7 +145,6 @@ bool Simulation::resetCharacter(int id) {
   fresh->kind = old.kind;
   fresh->shard = old.shard;
   fresh->controller.setGait(old.controller.gait());
-  fresh->goal = old.goal;
   fresh->controller.setGoal(old.controller.goal());
   shards_.replaceAgent(&old, fresh.get());
   // Same morphology, same number of bodies in the same order: the render entries keep their

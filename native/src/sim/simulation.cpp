@@ -107,7 +107,7 @@ int Simulation::addCharacters(Crowd crowd, int count) {
     const Place p = layout_.next();
     const Character kind = crowdKind(crowd, i);
     if (spawn(kind, p.x, p.z, p.heading) < 0) break;  // the render buffer is full
-    setGoal(characterCount() - 1, {cruiseSpeed(kind), 0.0});
+    agents_.back()->controller.setGoal({cruiseSpeed(kind), 0.0});
     ++added;
   }
   return added;
@@ -158,8 +158,9 @@ void Simulation::benchmarkCrowd(int characters, double spacing,
     int shard = 0;
     while (ThreadPool::chunk(characters, shards(), shard).end <= i) ++shard;
     if (spawnAt(i, p, shard) < 0) break;
-    setGoal(characterCount() - 1, {cruiseSpeed(agents_.back()->kind), 0.0});
-    agents_.back()->controller.setPhase(std::fmod(i * 0.6180339887498949, 1.0));  // golden-ratio sequence: evenly spread
+    gait::Controller& c = agents_.back()->controller;
+    c.setGoal({cruiseSpeed(agents_.back()->kind), 0.0});
+    c.setPhase(std::fmod(i * 0.6180339887498949, 1.0));  // golden-ratio sequence: evenly spread
   }
   publish();
 }
@@ -252,17 +253,12 @@ void Simulation::runSteps(int steps) {
 bool Simulation::setWander(int id, double arenaRadius) {
   const bool on = arenaRadius > 0;
   if (on) wander_.setArenaRadius(arenaRadius);
-  // One that stops wandering keeps the turn rate it was last steered at, at its own speed again.
-  auto set = [&](Agent& a) {
-    wander_.set(a.id, on);
-    if (!on) a.controller.setGoal({a.goal.speed, a.controller.goal().turnRate});
-  };
   if (id == -1) {
-    for (const auto& a : agents_) set(*a);
+    for (const auto& a : agents_) wander_.set(a->id, on);
     return true;
   }
   if (indexOf(id) < 0) return false;
-  set(*agents_[indexOf(id)]);
+  wander_.set(id, on);
   return true;
 }
 
@@ -273,13 +269,12 @@ void Simulation::steerWanderers() {
     const physics::Character& c = *agents_[i]->body;
     const auto root = c.segmentState(c.morphology().legFrames[0]);
     bodies[i] = {agents_[i]->id, root.position.x(), root.position.z(), gait::headingOf(root.orientation),
-                 agents_[i]->goal.speed, wander_.wanders(agents_[i]->id), fallen(i)};
+                 agents_[i]->controller.goal().speed, wander_.wanders(agents_[i]->id), fallen(i)};
   }
   for (int i = 0; i < n; ++i) {
     if (!bodies[i].wanders || bodies[i].fallen) continue;
-    gait::Goal goal = agents_[i]->goal;
+    gait::Goal goal = agents_[i]->controller.goal();
     goal.turnRate = wanderTurnRate(bodies, i, wander_.arenaRadius(), time());
-    goal.speed = wanderSpeed(goal.speed, goal.turnRate);
     agents_[i]->controller.setGoal(goal);
   }
 }

@@ -153,8 +153,6 @@ class Simulation {
   const physics::Character& character(int i) const { return *agents_[i]->body; }
   physics::Character& character(int i) { return *agents_[i]->body; }
   gait::Controller& controller(int i) { return agents_[i]->controller; }
-  // The goal character i was given (setGoal); a wanderer's controller is steered from it.
-  const gait::Goal& goal(int i) const { return agents_[i]->goal; }
   const gait::Controller& controller(int i) const { return agents_[i]->controller; }
   // The joint torques the controller wrote in the last step (controller.h convention).
   const std::vector<Eigen::Vector3d>& lastTorques(int i) const { return agents_[i]->torques; }
@@ -189,17 +187,15 @@ class Simulation {
   // ---- Wandering (wander.h) -------------------------------------------------------------------
   // Character `id` (or every character now in the scene with id = -1) wanders inside the arena,
   // a circle of `arenaRadius` metres about the origin (one arena for every wanderer: the last
-  // radius given): every kWanderPeriodSteps steps wandering chooses its turn rate, and its speed,
-  // its goal's or slower while it turns hard (wander.h); `arenaRadius` = 0 stops it wandering (it
-  // keeps its last turn rate, at its goal's speed).
+  // radius given), keeping its goal's speed while wandering chooses its turn rate every
+  // kWanderPeriodSteps steps; `arenaRadius` = 0 stops it wandering (it keeps its last goal).
   // Returns false if no character has that id. Resets keep it (ids are kept).
   bool setWander(int id, double arenaRadius);
   bool wanders(int index) const { return wander_.wanders(idOf(index)); }
   double arenaRadius() const { return wander_.arenaRadius(); }
 
   // ---- Interaction (interaction.h, interaction.cpp) -------------------------------------------
-  // Steering (beyond the thesis): character index i, or all with i = -1. A wanderer keeps the
-  // speed as its own and is steered from it (setWander).
+  // Steering (beyond the thesis): character index i, or all with i = -1.
   void setGoal(int i, const gait::Goal& goal);
 
   // A box of half size `half` thrown from `from` with velocity `velocity` (m/s). It collides

@@ -36,9 +36,9 @@ double wanderTurnRate(const std::vector<WanderBody>& bodies, int self, double ar
   const WanderBody& b = bodies[self];
   const double fx = std::sin(b.heading), fz = std::cos(b.heading);
 
-  // Containment: the margin is what a U-turn at the speed it turns at (wanderSpeed) and the allowed
-  // turn rate needs (its diameter, 2 v / omega) plus a metre, at most half the arena.
-  const double turnRadius = std::abs(wanderSpeed(b.speed, s.maxTurnRate, s)) / s.maxTurnRate;
+  // Containment: the margin is what a U-turn at this speed and the allowed turn rate needs (its
+  // diameter, 2 v / omega) plus a metre, at most half the arena.
+  const double turnRadius = std::abs(b.speed) / s.maxTurnRate;
   const double margin = std::min(0.5 * arenaRadius, 2 * turnRadius + 1.0);
   const double r = std::hypot(b.x, b.z);
   // The weight of containment: 0 inside the margin's inner side, rising to 1 where a character
@@ -92,12 +92,6 @@ double wanderTurnRate(const std::vector<WanderBody>& bodies, int self, double ar
   // outrank the drift, which fades out as the edge nears.
   const double turn = containment + (1 - edge) * (separation + (1 - std::min(1.0, push)) * wander);
   return std::clamp(turn, -s.maxTurnRate, s.maxTurnRate);
-}
-
-double wanderSpeed(double speed, double turnRate, const WanderSettings& s) {
-  const double turn = std::abs(turnRate);
-  if (turn * std::abs(speed) <= s.maxSidewaysAcceleration) return speed;
-  return std::copysign(s.maxSidewaysAcceleration / turn, speed);
 }
 
 void Wander::set(int id, bool on) {

@@ -10,18 +10,11 @@
 //   wander       a slow, smooth drift of heading, different for every character, so that the
 //                crowd does not walk in lockstep circles.
 // The result is clamped to the turn rate both presets are measured to follow (README, Walking:
-// ±0.3 rad/s, yaw rates within 1 % of the goal). Steering gives speed as well as direction
-// (Reynolds 1999): a turn at rate ω and speed v asks the body for v·ω of sideways acceleration,
-// and wandering asks for no more than the characters are measured to hold. The trot turns at
-// 0.3 rad/s at 2.5 m/s (0.75 m/s²) without a fall; the canter, told 0.3 rad/s at 3.5 m/s, turns
-// at 0.19–0.28 and falls about once per 250 s of a long turn (docs/controller-notes.md §62). So
-// while it turns, a wanderer is slowed to at most maxSidewaysAcceleration / |ω|, and takes up its
-// own goal speed again as the turn eases: a cantering crowd trots round the arena's edge. The
-// demo's cantering crowd (12 quadrupeds, 60 s, 12 layouts) fell 50 times in 144 at 3.5 m/s and
-// 19 at 3.0 m/s without this, and ran out to 33 m from the centre of a 12 m arena; with it, 3 and
-// 9 times, out to 21 m (docs/controller-notes.md §64). Walkers up to 2.5 m/s are never slowed. Everything is a function
-// of the characters' positions, headings, ids, goals and the step index, computed serially between
-// fixed steps, so a run is as deterministic and replayable as one without wandering.
+// ±0.3 rad/s, yaw rates within 1 % of the goal), but for the quadruped's canter, which turns at
+// 0.19–0.3 rad/s when told 0.3 (turnPlacement and maxTurnSlip, gait/params.h) and so runs a
+// little wider than the arena before it comes round. Everything is a function of the characters'
+// positions, headings, ids and the step index, computed serially between fixed steps, so a run
+// is as deterministic and replayable as one without wandering.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -33,7 +26,7 @@ struct WanderBody {
   int id;
   double x, z;     // root leg frame's centre, m
   double heading;  // rad about +y, 0 = +z
-  double speed;    // its own goal speed, m/s (sets the margin it needs to turn round)
+  double speed;    // its goal speed, m/s (sets the margin it needs to turn round)
   bool wanders;    // steered by wandering (others are obstacles only)
   bool fallen;     // a fallen character is an obstacle, not steered
 };
@@ -48,8 +41,6 @@ struct WanderSettings {
   double separation = 2.5;
   // The wander drift: at most this share of maxTurnRate.
   double wanderShare = 0.5;
-  // m/s²: the sideways acceleration v·ω a turn may ask for (the trot's at 2.5 m/s and 0.3 rad/s).
-  double maxSidewaysAcceleration = 0.75;
 };
 
 // Goals are recomputed every kPeriodSteps fixed steps (0.1 s at 120 Hz): steering is slow next to
@@ -60,11 +51,6 @@ constexpr int kWanderPeriodSteps = 12;
 // in an arena of radius `arenaRadius` centred on the origin.
 double wanderTurnRate(const std::vector<WanderBody>& bodies, int self, double arenaRadius, double time,
                       const WanderSettings& settings = {});
-
-// The speed (m/s) a wanderer with goal speed `speed` is given while it turns at `turnRate`: the
-// goal speed, or slower where the turn would ask for more than maxSidewaysAcceleration (its sign
-// kept: a walk backwards is slowed alike).
-double wanderSpeed(double speed, double turnRate, const WanderSettings& settings = {});
 
 // Which characters wander (by id, stable across resets) and the arena they wander in.
 class Wander {

@@ -33,8 +33,7 @@ const char* footfallName(Footfall f) {
 Footfall classifyFootfall(const body::Morphology& m, const LegSchedule* legs) {
   const int count = static_cast<int>(m.legs.size());
   if (count < 2 || count > GaitPlayer::kMaxLegs) return Footfall::Unknown;
-  bool walking = true;
-  for (int l = 0; l < count; ++l) walking = walking && legs[l].dutyFactor > 0.5;
+  const bool walking = walks(legs, count);
   if (count == 2 && m.legFrames.size() == 1) return walking ? Footfall::Walk : Footfall::Run;
   if (count != 4 || m.legFrames.size() != 2) return Footfall::Unknown;
   if (walking) return Footfall::Walk;

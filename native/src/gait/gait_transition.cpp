@@ -1,5 +1,7 @@
 #include "gait/gait_transition.h"
 
+#include "gait/gait_player.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -8,8 +10,6 @@ namespace gaitlab::gait {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
-
-double frac(double x) { return x - std::floor(x); }
 
 }  // namespace
 
@@ -22,7 +22,7 @@ double footfallDistance(const LegParams* a, const LegParams* b, int legs) {
   const int n = std::min(legs, kMaxLegs);
   if (n < 2) return 0;
   double moves[kMaxLegs];
-  for (int i = 0; i < n; ++i) moves[i] = frac(b[i].stepTrigger - a[i].stepTrigger);
+  for (int i = 0; i < n; ++i) moves[i] = GaitPlayer::legPhase(b[i].stepTrigger, a[i].stepTrigger);  // in [0, 1)
   std::sort(moves, moves + n);
   double widestGap = 1.0 - (moves[n - 1] - moves[0]);  // across the cycle's start
   for (int i = 1; i < n; ++i) widestGap = std::max(widestGap, moves[i] - moves[i - 1]);
@@ -33,12 +33,7 @@ bool footfallDiffers(const LegParams* a, const LegParams* b, int legs) {
   const int n = std::min(legs, kMaxLegs);
   if (footfallDistance(a, b, n) > kFootfallTolerance) return true;
   if (n <= 2) return false;  // one pair of legs: walk and run blend (gait_transition.h)
-  auto walks = [n](const LegParams* p) {
-    for (int i = 0; i < n; ++i)
-      if (!(p[i].dutyFactor > 0.5)) return false;
-    return true;
-  };
-  return walks(a) != walks(b);
+  return walks(a, n) != walks(b, n);
 }
 
 bool phaseReached(double before, double after, double at) {

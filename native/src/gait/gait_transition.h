@@ -55,6 +55,16 @@ double cyclicDistance(double a, double b);
 // that this is least. The same for any order of the legs; 0 for a pattern only shifted.
 double footfallDistance(const LegParams* a, const LegParams* b, int legs);
 
+// Whether every one of `legs` legs (LegParams or LegSchedule) is down more than half the cycle:
+// a walk (Alexander 1984), for the change of footfall pattern above and for the gaits by name
+// (gait/footfall.h).
+template <class Leg>
+bool walks(const Leg* legs, int count) {
+  for (int i = 0; i < count; ++i)
+    if (!(legs[i].dutyFactor > 0.5)) return false;
+  return true;
+}
+
 // Whether leg schedules `a` and `b` (`legs` legs each) differ in footfall pattern, as above.
 bool footfallDiffers(const LegParams* a, const LegParams* b, int legs);
 

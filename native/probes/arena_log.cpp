@@ -2,11 +2,11 @@
 // wandering in the demo's arena (sim/wander.h) at one goal speed, and which of them fall
 // (docs/controller-notes.md, "The demo's wandering slowing a hard turn").
 //
-//   build/native/gaitlab_arena_log SPEED [ARENA_RADIUS] [LAYOUTS] [verbose] > log.txt
+//   build/native/gaitlab_arena_log SPEED [ARENA_RADIUS] [LAYOUTS] [verbose|GAIT_FILE] > log.txt
 //
 // Each layout (1, 2, ... LAYOUTS, also the simulation's seed) places 12 quadrupeds on a circle of
 // 5 m about the arena's centre, turned 1.2 rad from facing out, gives them the preset's gait and
-// the goal SPEED, lets them wander in an arena of ARENA_RADIUS m (default 12, the demo's smallest)
+// the goal SPEED (or the quadruped gait file GAIT_FILE's), lets them wander in an arena of ARENA_RADIUS m (default 12, the demo's smallest)
 // for 60 simulated seconds, and prints each fall: the layout, the quadruped, the time. With
 // `verbose`, also the turn rate and the speed each was steered at (its controller's goal) and its
 // root leg frame's horizontal speed, every 0.1 s over the 4 s before it fell. Last, the falls of
@@ -15,10 +15,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gait/defaults.h"
+#include "gait/params_io.h"
 #include "sim/simulation.h"
 
 using namespace gaitlab;
@@ -38,13 +40,21 @@ struct Sample {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: gaitlab_arena_log SPEED [ARENA_RADIUS] [LAYOUTS] [verbose]\n");
+    std::fprintf(stderr, "usage: gaitlab_arena_log SPEED [ARENA_RADIUS] [LAYOUTS] [verbose|GAIT_FILE]\n");
     return 2;
   }
   const double speed = std::atof(argv[1]);
   const double radius = argc > 2 ? std::atof(argv[2]) : 12;
   const int layouts = argc > 3 ? std::atoi(argv[3]) : 1;
   const bool verbose = argc > 4 && std::string(argv[4]) == "verbose";
+  std::optional<gait::GaitFile> file;
+  if (argc > 4 && !verbose) {
+    file.emplace();
+    if (const auto error = gait::loadGaitFile(argv[4], Character::Quadruped, &*file)) {
+      std::fprintf(stderr, "%s: %s\n", argv[4], error->describe().c_str());
+      return 2;
+    }
+  }
   int falls = 0;
   double farthest = 0;
   for (int layout = 1; layout <= layouts; ++layout) {
@@ -52,6 +62,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < kCrowd; ++i) {
       const double a = 2 * M_PI * i / kCrowd + 0.3 * layout;
       s.spawn(Character::Quadruped, 5 * std::sin(a), 5 * std::cos(a), a + 1.2);
+      if (file) s.controller(i).setGait(file->gait);
       s.setGoal(i, {speed, 0.0});
     }
     s.setWander(-1, radius);

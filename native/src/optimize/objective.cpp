@@ -231,6 +231,11 @@ double episodeTurnRate(const ObjectiveSettings& settings, int start) {
   return settings.turnBothWays > 0 && start % 2 == 1 ? -settings.turnRate : settings.turnRate;
 }
 
+std::vector<std::string> unmeasuredParameters(const ObjectiveSettings& settings) {
+  if (settings.turnRate == 0) return {"maxTurnSlip", "turnPlacement"};
+  return {};
+}
+
 std::vector<std::pair<double, double>> speedChangeSchedule(double lo, double hi, int index, uint32_t seed) {
   Random r((static_cast<uint64_t>(seed) << 32) ^ (0x5EEDC4A6ull + static_cast<uint64_t>(index)));
   std::vector<std::pair<double, double>> points;

@@ -68,7 +68,10 @@ Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start
   // A start outside the bounds (hand-edited in code, not loaded from a file) is brought inside.
   bestVector_ = gait::toVector(options.character, start);
   gait::clampToBounds(options.character, &bestVector_);
-  if (!heldCoordinates(options.character, options.held, &held_).empty()) held_.assign(bestVector_.size(), false);
+  // Held: what the caller holds, and what the episodes cannot measure (unmeasuredParameters).
+  std::vector<std::string> held = options.held;
+  for (const std::string& name : unmeasuredParameters(options.objective)) held.push_back(name);
+  if (!heldCoordinates(options.character, held, &held_).empty()) held_.assign(bestVector_.size(), false);
 }
 
 ObjectiveTerms Optimizer::score(const gait::GaitParams& params) const {

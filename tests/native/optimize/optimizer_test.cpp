@@ -725,6 +725,32 @@ TEST(OptimizeSearch, HeldParametersStayAsTheyStartWhileTheRestIsSearched) {
   }
 }
 
+// What no episode measures is held too (unmeasuredParameters): the turn's parameters act only
+// while the goal turns, so a search without a turn rate leaves them as they start, and a search
+// with one moves them with the rest (CMA-ES's winners move every free coordinate).
+TEST(OptimizeSearch, TheTurnsParametersAreHeldUnlessTheEpisodesTurn) {
+  gait::GaitParams start = detunedBiped();
+  start.maxTurnSlip = 1.0;  // inside their bounds, where a move is not clamped away
+  start.turnPlacement = 0.5;
+  for (const double turn : {0.0, 0.5}) {
+    SCOPED_TRACE(turn);
+    SearchOptions o = quickSearch(Method::CmaEs, 2);
+    o.candidates = 6;
+    o.objective.seconds = 3.0;
+    o.objective.turnRate = turn;
+    auto opt = Optimizer::create(o, start);
+    const double first = opt->step().bestObjective;
+    for (int g = 1; g < 6; ++g) opt->step();
+    ASSERT_LT(opt->bestObjective(), first) << "the search found nothing better";
+    const gait::GaitParams& best = opt->best();
+    const bool held = turn == 0;
+    EXPECT_EQ(best.maxTurnSlip == start.maxTurnSlip, held) << best.maxTurnSlip;
+    EXPECT_EQ(best.turnPlacement == start.turnPlacement, held) << best.turnPlacement;
+    EXPECT_NE(best.period, start.period);
+  }
+  EXPECT_TRUE(unmeasuredParameters(ObjectiveSettings{}).size() == 2u);
+}
+
 TEST(OptimizeSearch, HeldNamesAreParametersOrFieldsAndOthersAreRefused) {
   std::vector<bool> mask;
   EXPECT_EQ(heldCoordinates(gait::Character::Quadruped, {"frontLeft.stepTrigger"}, &mask), "");

@@ -124,7 +124,8 @@ const char* kOptimizeUsage =
     "                                episodes walk with most); episodes walk with every key\n"
     "  --hold NAME,...               parameters left as they start: schema names\n"
     "                                (frontLeft.stepTrigger) or a field every leg or leg frame\n"
-    "                                has (stepTrigger: every leg's), e.g. to keep a footfall pattern\n"
+    "                                has (stepTrigger: every leg's), e.g. to keep a footfall pattern;\n"
+    "                                without a turnRate, maxTurnSlip and turnPlacement are held too\n"
     "  --method greedy|cmaes         greedy stochastic search of §3.3 (default) or CMA-ES\n"
     "  --step-size F                 how far a candidate moves, as a share of each parameter's\n"
     "                                range, 0.001 to 1 (default 0.1): greedy moves a parameter by\n"
@@ -583,7 +584,7 @@ int optimizeCommand(int argc, char** argv) {
   const int total = static_cast<int>(generations);
   json history = json::array();
   // The start's own score, for comparison (one evaluation outside the search's budget).
-  const double startObjective = optimizer->score(tuned).total;
+  const double startObjective = optimizer->startTerms().total;
   double elapsed = 0;
   for (int g = 0; g < total && !g_interrupted; ++g) {
     const optimize::Generation gen = optimizer->step();

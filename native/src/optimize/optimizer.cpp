@@ -89,8 +89,21 @@ gait::Gait Optimizer::gaitWith(const gait::GaitParams& params) const {
   return gait;
 }
 
+const ObjectiveTerms& Optimizer::startTerms() {
+  if (!startScored_) {
+    // The start as the search sees it: within the bounds, as bestVector_ holds it.
+    gait::fromVector(options_.character, bestVector_, &best_);
+    startTerms_ = score(best_);
+    bestTerms_ = startTerms_;
+    bestObjective_ = startTerms_.total;
+    startScored_ = true;
+  }
+  return startTerms_;
+}
+
 Generation Optimizer::step() {
   const auto t0 = std::chrono::steady_clock::now();
+  if (!startScored_) startTerms();
   std::vector<std::vector<double>> points = propose();
   const int k = static_cast<int>(points.size());
   // Held coordinates are evaluated as they started, whatever the method proposed for them (the
@@ -116,7 +129,7 @@ Generation Optimizer::step() {
     if (results[i].total < bestObjective_ && (winner < 0 || results[i].total < results[winner].total)) winner = i;
   }
   if (winner >= 0) {
-    g.improved = std::isfinite(bestObjective_);
+    g.improved = true;
     bestObjective_ = results[winner].total;
     bestTerms_ = results[winner];
     bestVector_ = points[winner];

@@ -96,6 +96,14 @@ class Optimizer {
   // Runs one generation: K evaluations on the pool. Returns what it reached.
   Generation step();
 
+  // The start's own objective, evaluated once (here or before the first generation, outside the
+  // evaluation count) on the search's episodes. The start is the best until a candidate scores
+  // lower, so a search never returns a gait scoring worse than the one it was given: CMA-ES
+  // samples around the start without evaluating it, and from a gait near its optimum a search of
+  // 200 candidates had written out one that scored worse than its start (docs/controller-notes.md
+  // §66). The greedy search re-evaluates it as its first candidate, its determinism check.
+  const ObjectiveTerms& startTerms();
+
   const gait::GaitParams& best() const { return best_; }
   // The whole gait with the tuned key set to `params` (SearchOptions::gait; without keys, `params`
   // alone): what every episode walks with, and what a search writes out.
@@ -132,6 +140,8 @@ class Optimizer {
   double bestObjective_;
   ObjectiveTerms bestTerms_;
   int generation_ = 0, evaluations_ = 0, mismatches_ = 0;
+  bool startScored_ = false;
+  ObjectiveTerms startTerms_;
 
  private:
   sim::ThreadPool pool_;

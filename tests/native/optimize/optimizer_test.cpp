@@ -725,6 +725,29 @@ TEST(OptimizeSearch, HeldParametersStayAsTheyStartWhileTheRestIsSearched) {
   }
 }
 
+// The start is the best until a candidate beats it (Optimizer::startTerms): from the walking
+// preset, candidates drawn half the parameter ranges away all score worse, and both methods then
+// return the start itself, not the least bad of them.
+TEST(OptimizeSearch, ASearchNeverReturnsAGaitScoringWorseThanItsStart) {
+  const gait::GaitParams start = gait::defaultParams(gait::Character::Biped);
+  for (Method m : {Method::Greedy, Method::CmaEs}) {
+    SCOPED_TRACE(methodName(m));
+    SearchOptions o = quickSearch(m, 2);
+    o.stepScale = 0.5;
+    o.perturbProbability = 1.0;
+    auto opt = Optimizer::create(o, start);
+    const double own = opt->startTerms().total;
+    EXPECT_EQ(opt->evaluations(), 0) << "the start is scored outside the search's evaluations";
+    for (int g = 0; g < 2; ++g) {
+      const Generation gen = opt->step();
+      EXPECT_FALSE(gen.improved) << "generation " << gen.index << " scored " << gen.bestObjective << " against " << own;
+    }
+    EXPECT_EQ(opt->bestObjective(), own);
+    EXPECT_EQ(opt->startTerms().total, own) << "the start's terms stay the start's";
+    EXPECT_EQ(gait::toVector(gait::Character::Biped, opt->best()), gait::toVector(gait::Character::Biped, start));
+  }
+}
+
 // What no episode measures is held too (unmeasuredParameters): the turn's parameters act only
 // while the goal turns, so a search without a turn rate leaves them as they start, and a search
 // with one moves them with the rest (CMA-ES's winners move every free coordinate).

@@ -5,12 +5,13 @@
 //   build/native/gaitlab_arena_log SPEED [ARENA_RADIUS] [LAYOUTS] [verbose|GAIT_FILE] > log.txt
 //
 // Each layout (1, 2, ... LAYOUTS, also the simulation's seed) places 12 quadrupeds on a circle of
-// 5 m about the arena's centre, turned 1.2 rad from facing out, gives them the preset's gait and
-// the goal SPEED (or the quadruped gait file GAIT_FILE's), lets them wander in an arena of ARENA_RADIUS m (default 12, the demo's smallest)
-// for 60 simulated seconds, and prints each fall: the layout, the quadruped, the time. With
-// `verbose`, also the turn rate and the speed each was steered at (its controller's goal) and its
-// root leg frame's horizontal speed, every 0.1 s over the 4 s before it fell. Last, the falls of
-// all and the farthest any leg frame went from the centre.
+// 5 m about the arena's centre, turned 1.2 rad from facing out, gives them the preset's gait (or
+// the quadruped gait file GAIT_FILE's) and the goal SPEED, lets them wander in an arena of
+// ARENA_RADIUS m (default 12, the demo's smallest) for 60 simulated seconds, and prints each
+// fall: the layout, the quadruped, the time. With `verbose`, also the turn rate and the speed each
+// was steered at (its controller's goal) and its root leg frame's horizontal speed, every 0.1 s
+// over the 4 s before it fell. Last, the falls of all and the farthest any leg frame went from the
+// centre.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -90,20 +90,19 @@ gait::Gait Optimizer::gaitWith(const gait::GaitParams& params) const {
 }
 
 const ObjectiveTerms& Optimizer::startTerms() {
-  if (!startScored_) {
+  if (!startTerms_) {
     // The start as the search sees it: within the bounds, as bestVector_ holds it.
     gait::fromVector(options_.character, bestVector_, &best_);
     startTerms_ = score(best_);
-    bestTerms_ = startTerms_;
-    bestObjective_ = startTerms_.total;
-    startScored_ = true;
+    bestTerms_ = *startTerms_;
+    bestObjective_ = bestTerms_.total;
   }
-  return startTerms_;
+  return *startTerms_;
 }
 
 Generation Optimizer::step() {
   const auto t0 = std::chrono::steady_clock::now();
-  if (!startScored_) startTerms();
+  startTerms();  // scored once, before the first generation
   std::vector<std::vector<double>> points = propose();
   const int k = static_cast<int>(points.size());
   // Held coordinates are evaluated as they started, whatever the method proposed for them (the
@@ -128,8 +127,8 @@ Generation Optimizer::step() {
   for (int i = 0; i < k; ++i) {
     if (results[i].total < bestObjective_ && (winner < 0 || results[i].total < results[winner].total)) winner = i;
   }
-  if (winner >= 0) {
-    g.improved = true;
+  g.improved = winner >= 0;
+  if (g.improved) {
     bestObjective_ = results[winner].total;
     bestTerms_ = results[winner];
     bestVector_ = points[winner];

@@ -140,8 +140,7 @@ class Optimizer {
   double bestObjective_;
   ObjectiveTerms bestTerms_;
   int generation_ = 0, evaluations_ = 0, mismatches_ = 0;
-  bool startScored_ = false;
-  ObjectiveTerms startTerms_;
+  std::optional<ObjectiveTerms> startTerms_;  // startTerms(), once scored
 
  private:
   sim::ThreadPool pool_;

@@ -72,9 +72,12 @@ async function distinctColours(page, png) {
 
 /**
  * The built page (build/web, `npm run build`) served as a static host without COOP/COEP would
- * serve it: plain files, right content types, no isolation headers.
+ * serve it: plain files, right content types, no isolation headers. `serviceWorker`, if given,
+ * rewrites the script the browser installs as the service worker (its requests carry
+ * `Service-Worker: script`; the page's own <script> of the same file is served as it is), to try
+ * the page against a worker that installs slowly or does not isolate.
  */
-function startStaticHost(root) {
+function startStaticHost(root, { serviceWorker } = {}) {
   const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm', '.json': 'application/json', '.svg': 'image/svg+xml' };
   const host = http.createServer((request, response) => {
     const url = new URL(request.url ?? '/', 'http://host');
@@ -84,6 +87,10 @@ function startStaticHost(root) {
       return;
     }
     response.writeHead(200, { 'Content-Type': types[path.extname(file)] ?? 'application/octet-stream' });
+    if (serviceWorker && request.headers['service-worker'] === 'script') {
+      response.end(serviceWorker(fs.readFileSync(file, 'utf8')));
+      return;
+    }
     fs.createReadStream(file).pipe(response);
   });
   return new Promise((resolve) => {
@@ -94,7 +101,7 @@ function startStaticHost(root) {
   });
 }
 
-describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
+describe('demo page', { timeout: TEST_TIMEOUT * 14 }, () => {
   before(async () => {
     browser = await startBrowser({ viewport: { width: 1024, height: 640 } });
     ({ server, context } = browser);
@@ -650,6 +657,48 @@ describe('demo page', { timeout: TEST_TIMEOUT * 12 }, () => {
       // Requests cut short by the reload are not errors.
       assert.deepEqual(problems.filter((p) => !p.includes('net::ERR_ABORTED')), [], 'no page errors');
       await page.close();
+    } finally {
+      await host.close();
+    }
+  });
+
+  it('reaches isolation on a static host when the service worker installs slower than the page reloads', { timeout: TEST_TIMEOUT }, async () => {
+    // coi-serviceworker reloads the page as soon as its worker starts installing. A worker still
+    // installing when the reloaded page registers again (a busy machine; here 3 s, forced) once
+    // left that page controlled but never isolated: it waited until its error message.
+    const slowInstall = (source) => 'self.addEventListener("install", (e) => e.waitUntil(new Promise((r) => setTimeout(r, 3000))));\n' + source;
+    const host = await startStaticHost(path.join(repoDir, 'build', 'web'), { serviceWorker: slowInstall });
+    try {
+      const { page, problems } = await openPage(`${host.url}?characters=2`);
+      await page.waitForFunction(() => window.crossOriginIsolated === true, null, { timeout: PAGE_TIMEOUT, polling: 250 });
+      const s = await ready(page);
+      assert.equal(s.isolation, 'service worker');
+      assert.deepEqual(problems.filter((p) => !p.includes('net::ERR_ABORTED')), [], 'no page errors');
+    } finally {
+      await host.close();
+    }
+  });
+
+  it('reloads once, not for ever, and explains itself when the service worker does not isolate the page', { timeout: TEST_TIMEOUT }, async () => {
+    // A worker that takes the page over but adds no headers (not coi-serviceworker's own).
+    const inert = () => 'self.addEventListener("install", () => self.skipWaiting());\n' +
+      'self.addEventListener("activate", (e) => e.waitUntil(self.clients.claim()));\n';
+    const host = await startStaticHost(path.join(repoDir, 'build', 'web'), { serviceWorker: inert });
+    try {
+      const page = await context.newPage();
+      let loads = 0;
+      page.on('framenavigated', (frame) => { if (frame === page.mainFrame()) loads++; });
+      await page.goto(`${host.url}?characters=2`, { waitUntil: 'load', timeout: PAGE_TIMEOUT });
+      const notice = page.getByRole('alert');
+      await notice.waitFor({ state: 'visible', timeout: PAGE_TIMEOUT });
+      assert.match(await notice.innerText(), /service worker/);
+      const settled = loads;
+      // The first load, coi-serviceworker's reload, then the page's own (isolation.ts): one when
+      // the worker takes it over, if it was not controlled yet, and one, once, of a controlled page.
+      assert.ok(settled >= 2 && settled <= 4, `loaded ${settled} times`);
+      await page.waitForTimeout(6000);
+      assert.equal(loads, settled, 'no further reloads');
+      assert.equal(await page.evaluate(() => window.crossOriginIsolated), false);
     } finally {
       await host.close();
     }

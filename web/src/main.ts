@@ -27,6 +27,7 @@ import type { OptimizerSchema } from './optimize/options';
 import { Overlay } from './ui/overlay';
 import { RateMeter } from './ui/rate-meter';
 import { installTestHook } from './test-hook';
+import { isolationMode, reloadWhenControlled } from './isolation';
 
 const canvas = document.querySelector<HTMLCanvasElement>('#scene');
 if (!canvas) throw new Error('index.html has no <canvas id="scene">');
@@ -65,16 +66,6 @@ let gaits: GaitEditors | null = null;
 let optimizer: OptimizePanel | null = null;
 /** The learner's id as the worker last reported it. */
 let learnerId: number | null = null;
-
-/**
- * How the page runs: WASM threads need cross-origin isolation, which the server's headers give
- * (npm start), or — on a static host that cannot send them — coi-serviceworker, which adds them
- * from a service worker after one reload (see index.html).
- */
-function isolationMode(): string {
-  if (!window.crossOriginIsolated) return 'none';
-  return navigator.serviceWorker?.controller?.scriptURL.includes('coi-serviceworker') ? 'service worker' : 'headers';
-}
 
 function showError(title: string, detail: string): void {
   state.error = `${title}: ${detail}`;
@@ -279,10 +270,11 @@ function onKey(event: KeyboardEvent): void {
   event.preventDefault();
 }
 
+reloadWhenControlled();
 if (!window.crossOriginIsolated) {
   // SharedArrayBuffer (hence WASM threads and the shared render buffer) needs isolation. On a
-  // host without the headers, coi-serviceworker (index.html) installs a service worker and
-  // reloads the page; give it a moment before saying it could not.
+  // host without the headers, coi-serviceworker installs a service worker and the page reloads
+  // (isolation.ts); give it a moment before saying it could not.
   overlay.message('Not cross-origin isolated: enabling it through a service worker, the page reloads…');
   setTimeout(() => {
     showError(

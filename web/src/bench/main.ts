@@ -17,6 +17,7 @@ import {
 import { buildGrid, parseList, pointCost, type BenchEvent, type BenchInputs, type PointSpec } from './protocol';
 import { CROWD_SHARDS, MAX_THREADS } from '../sim/gaitlab-wasm';
 import { peersSection, type PeersHook } from './peers';
+import { reloadWhenControlled } from '../isolation';
 
 interface Hook {
   state: 'idle' | 'running' | 'done' | 'cancelled' | 'error';
@@ -32,6 +33,9 @@ declare global {
     gaitlabBench: Hook;
   }
 }
+// On a static host, the reload into isolation that coi-serviceworker can miss (isolation.ts).
+reloadWhenControlled();
+
 const hook: Hook = { state: 'idle', document: null, error: null, capacity: { state: 'idle', biped: null, quadruped: null, seconds: 0 },
   peers: { state: 'idle', status: '', error: null, run: null } };
 window.gaitlabBench = hook;

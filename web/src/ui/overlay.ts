@@ -8,7 +8,7 @@ export interface HudFigures {
   characters: number;
   fallen: number;
   threads: number;
-  /** How the page gets its threads: see isolationMode() in main.ts. */
+  /** How the page gets its threads: see isolation.ts. */
   mode: string;
   drawCalls: number;
   /** Dynamic resolution's scale (1 = full). */

@@ -516,18 +516,20 @@ TEST(SpeedRange, TheBipedRunsAndTheQuadrupedTrotsAtTheTopOfTheirRange) {
 // Above the trot the quadruped canters (the walking benchmark's skills row, shortened): at 3.5 and
 // 3.6 m/s its preset's canter keys, the feet striking one after another with all four off the
 // ground for a while each stride, within 10 % of the goal (its fastest key sits near the speed it
-// runs, with speed tracking making up the rest: controller-notes §49, §54). Over 30 s from rest:
-// 3.24 and 3.35 m/s, flight 14 % and 13 %.
+// runs, with speed tracking making up the rest: controller-notes §49, §54); and from 3.2 m/s,
+// where its 3.2 m/s key, searched for speed, runs near its goal (§67; 2.60 and 2.98 m/s at goals
+// of 3.2 and 3.4 with the key before it). Over 30 s from rest (the second half's mean):
+// 3.12, 3.28, 3.26 and 3.34 m/s, flight 4 %, 9 %, 14 % and 15 % (the skills row asks for 2 %).
 TEST(SpeedRange, TheQuadrupedCantersAtTheTopOfItsRange) {
   WalkOptions o;
   o.character = Character::Quadruped;
   o.seconds = 30;
-  for (const double goal : {3.5, 3.6}) {
+  for (const double goal : {3.2, 3.4, 3.5, 3.6}) {
     o.speed = goal;
     const auto canter = runWalk(o);
     ASSERT_FALSE(canter.fell) << "the canter at " << goal << " m/s fell after " << canter.fallTime << " s";
     EXPECT_EQ(canter.footfall, gaitlab::gait::Footfall::Canter) << "goal " << goal;
-    EXPECT_GT(canter.flightFraction, 0.05) << "goal " << goal;
+    EXPECT_GT(canter.flightFraction, 0.02) << "goal " << goal;
     EXPECT_NEAR(canter.meanSpeed, goal, 0.1 * goal) << "goal " << goal;
   }
 }

@@ -29,36 +29,28 @@ export function isolationMode(): IsolationMode {
  */
 const RELOADED_KEY = 'gaitlab.isolation-reload';
 
-function sessionFlag(set?: boolean): boolean {
-  try {
-    if (set === true) sessionStorage.setItem(RELOADED_KEY, '1');
-    else if (set === false) sessionStorage.removeItem(RELOADED_KEY);
-    return sessionStorage.getItem(RELOADED_KEY) === '1';
-  } catch {
-    // Storage refused (some private modes): no guard, so no reload of a controlled page.
-    return true;
-  }
-}
-
 /**
  * On a page that is not isolated, in a browser that may install the service worker: reloads when
  * a service worker takes the page over ('controllerchange', which comes once per new worker, so
  * cannot loop), or at once if one already controls it (once per session, see RELOADED_KEY).
- * Returns whether it reloads or waits to.
  */
-export function reloadWhenControlled(): boolean {
+export function reloadWhenControlled(): void {
   const workers = navigator.serviceWorker;
-  if (window.crossOriginIsolated) {
-    sessionFlag(false);
-    return false;
+  try {
+    if (window.crossOriginIsolated) {
+      sessionStorage.removeItem(RELOADED_KEY);
+      return;
+    }
+    if (!workers || !window.isSecureContext) return;
+    if (!workers.controller) {
+      workers.addEventListener('controllerchange', () => location.reload(), { once: true });
+      return;
+    }
+    if (sessionStorage.getItem(RELOADED_KEY)) return;
+    sessionStorage.setItem(RELOADED_KEY, '1');
+    location.reload();
+  } catch {
+    // sessionStorage refused (some private modes): without the guard, no reload of a controlled
+    // page; the page explains itself instead (main.ts).
   }
-  if (!workers || !window.isSecureContext) return false;
-  if (!workers.controller) {
-    workers.addEventListener('controllerchange', () => location.reload(), { once: true });
-    return true;
-  }
-  if (sessionFlag()) return false;
-  sessionFlag(true);
-  location.reload();
-  return true;
 }

@@ -66,6 +66,8 @@ let gaits: GaitEditors | null = null;
 let optimizer: OptimizePanel | null = null;
 /** The learner's id as the worker last reported it. */
 let learnerId: number | null = null;
+/** How this page got its threads; fixed for the page's life (isolation.ts). */
+const isolation = isolationMode();
 
 function showError(title: string, detail: string): void {
   state.error = `${title}: ${detail}`;
@@ -146,7 +148,7 @@ installTestHook({
     threads: state.threads,
     crossOriginIsolated: window.crossOriginIsolated,
     drawCalls: state.drawCalls,
-    isolation: isolationMode(),
+    isolation,
     bodies: crowd.frame?.bodyCount ?? 0,
     paused: state.paused,
     timeScale: state.timeScale,
@@ -524,7 +526,7 @@ if (!window.crossOriginIsolated) {
       fallen: state.characters.filter((c) => c.fallen).length,
       threads: state.threads,
       // One thread is serial, whatever the isolation allows.
-      mode: `${state.threads > 1 ? 'multi-threaded' : 'serial'} (isolated by ${isolationMode() === 'service worker' ? 'service worker' : 'headers'})`,
+      mode: `${state.threads > 1 ? 'multi-threaded' : 'serial'} (isolated by ${isolation})`,
       drawCalls: state.drawCalls,
       renderScale: activeStage.scale,
       paused: state.paused,

@@ -104,6 +104,9 @@ const char* kWalkUsage =
     "                                demo throws them (0.24 m, 8.3 kg, 14 m/s or faster) at random\n"
     "                                body parts, one walking episode each, until N hit, 1 to 1000;\n"
     "                                prints the hits and how many knocked the character over\n"
+    "  --get-up S                    with --box-hits: after each fall, watch S seconds more, 0 to\n"
+    "                                60, for the character getting up by itself (default 0: the\n"
+    "                                episode ends at the fall); counts the falls it got up from\n"
     "  --seed N                      0 to 4294967295 (default 1)\n"
     "  --trace                       include the leg frame's path every 0.1 s\n"
     "  --json                        print one JSON document\n";
@@ -225,15 +228,20 @@ int loadCreatureOption(const std::string& path, std::optional<gait::Character>* 
 
 // `gaitlab walk --box-hits N`: the box-hit trial (sim/box_hits.h) with the walk's character,
 // gait, goal and ground.
-int boxHits(const sim::WalkOptions& w, int hits, bool oneLine) {
+int boxHits(const sim::WalkOptions& w, int hits, double getUpSeconds, bool oneLine) {
   sim::BoxHitOptions b;
   b.walk = w;
   b.hits = hits;
+  b.getUpSeconds = getUpSeconds;
   const sim::BoxHitResult r = sim::runBoxHits(b);
   json list = json::array();
-  for (const sim::BoxHit& h : r.hits)
-    list.push_back({{"segment", h.segment}, {"throw_time_s", h.throwTime}, {"speed_m_s", h.speed}, {"fell", h.fell}});
-  const json out = {
+  for (const sim::BoxHit& h : r.hits) {
+    json hit = {{"segment", h.segment}, {"throw_time_s", h.throwTime}, {"speed_m_s", h.speed}, {"fell", h.fell}};
+    if (getUpSeconds > 0 && h.fell)
+      hit["got_up_after_s"] = h.gotUpAfter >= 0 ? json(h.gotUpAfter) : json(nullptr);
+    list.push_back(hit);
+  }
+  json out = {
       {"character", gait::characterName(w.character)},
       {"terrain", physics::terrainName(w.terrain)},
       {"goal_speed_m_s", w.speed},
@@ -245,6 +253,10 @@ int boxHits(const sim::WalkOptions& w, int hits, bool oneLine) {
       {"hits", list},
       {"seed", w.seed},
   };
+  if (getUpSeconds > 0) {
+    out["get_up_watch_s"] = getUpSeconds;
+    out["box_hit_get_ups"] = r.getUps();
+  }
   std::printf("%s\n", oneLine ? out.dump().c_str() : out.dump(2).c_str());
   return 0;
 }
@@ -254,7 +266,7 @@ int walk(int argc, char** argv) {
             {"--character", "--params", "--creature", "--speed", "--turn", "--heading", "--start-push-forward",
              "--start-push-left", "--seconds", "--terrain", "--push-impulse", "--push-every", "--seed",
              "--push-direction", "--push-duration", "--speed-schedule", "--gait-schedule", "--drift-window", "--box-hits",
-             "--start-phase"},
+             "--start-phase", "--get-up"},
             {"--json", "--trace"});
   if (o.help) return printHelp(kWalkUsage);
   if (!o.error.empty()) return api::usageError("walk", o.error);
@@ -296,9 +308,13 @@ int walk(int argc, char** argv) {
   w.seed = static_cast<uint32_t>(seed);
   if (o.values.count("--box-hits")) {
     long long hits = 0;
-    if (!o.integer("--box-hits", 1, 1000, 50, &hits)) return api::usageError("walk", o.error);
-    return boxHits(w, static_cast<int>(hits), o.flags.count("--json") > 0);
+    double getUp = 0;
+    if (!o.integer("--box-hits", 1, 1000, 50, &hits) || !o.number("--get-up", 0, 60, 0.0, &getUp))
+      return api::usageError("walk", o.error);
+    return boxHits(w, static_cast<int>(hits), getUp, o.flags.count("--json") > 0);
   }
+  if (o.values.count("--get-up"))
+    return api::usageError("walk", "--get-up watches the box-hit trial's falls: give --box-hits too");
   const std::string direction = o.values.count("--push-direction") ? o.values["--push-direction"] : "lateral";
   if (direction == "lateral") w.pushDirection = sim::PushDirection::Lateral;
   else if (direction == "forward") w.pushDirection = sim::PushDirection::Forward;

@@ -176,6 +176,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   comVelocity /= mass;
   comPosition /= mass;
   com_ = comPosition;
+  if (getsUp(s, torques)) return;  // fallen: getting up (gait/get_up.cpp) before it walks again
   boundTurnLead(comVelocity);
   Vector3d velocityH = worldToHeading(yaw, comVelocity);
   velocityH.y() = 0;
@@ -377,6 +378,10 @@ void Controller::finishTorques(const CharacterState& s, Vector3d* torques) const
     Vector3d& t = torques[leg.upper];
     t -= (1.0 - params_.gains.hipTwistScale) * t.dot(axis) * axis;
   }
+  clampTorques(torques);
+}
+
+void Controller::clampTorques(Vector3d* torques) const {
   const int segments = static_cast<int>(m_.segments.size());
   for (int i = 0; i < segments; ++i) torques[i] = clampNorm(torques[i], params_.gains.maxTorque);
 }

@@ -72,6 +72,8 @@ class Controller {
   double speedTrim() const { return speedTrim_; }
   // Standing on planted feet (gait/standing.cpp): every foot down, the gait clock stopped.
   bool standing() const { return stand_ == Stand::Planted; }
+  // Down after a fall and getting up (gait/get_up.cpp): the gait waits until it is on its feet.
+  bool down() const { return stand_ == Stand::Down; }
 
  private:
   struct LegGeometry {
@@ -129,7 +131,8 @@ class Controller {
   // and slow: the gait player holds every foot that lands) → Planted (every foot down: the
   // body held in a pose over its feet) → Walking (the goal moves, or the capture point leaves
   // the support polygon: a step is the only way to catch the body).
-  enum class Stand { Walking, Settling, Planted };
+  // Down (gait/get_up.cpp): fallen, rolling and rising onto its feet, then Settling.
+  enum class Stand { Walking, Settling, Planted, Down };
   void updateStand(const CharacterState& s, const Eigen::Vector3d& comVelocity);
   void release(const CharacterState& s, int leg);  // stepping again, `leg` first
   // A body on several leg frames stands as a table (plantedTable), one on a single leg frame
@@ -141,8 +144,18 @@ class Controller {
   // by the whole-body least squares (stance_forces.h); returns the number of feet.
   int shareWeight(const CharacterState& s, Eigen::Vector3d* points, Eigen::Vector3d* forces) const;
   SupportPolygon supportPolygon(const CharacterState& s) const;  // of the stance feet's soles
+  // Getting up after a fall (gait/get_up.cpp). isDown: the walking criteria's fall test
+  // (gait/fall.h) on every leg frame. getsUp notes a fall and, while down, writes the get-up's
+  // torques (getUp) and returns true. jointHold: a joint PD holding `segment` at `relative` to its
+  // parent.
+  bool isDown(const CharacterState& s) const;
+  bool getsUp(const CharacterState& s, Eigen::Vector3d* torques);
+  void getUp(const CharacterState& s, Eigen::Vector3d* torques);
+  void jointHold(int segment, const CharacterState& s, const Eigen::Quaterniond& relative, double kp,
+                 double kd, Eigen::Vector3d* torques) const;
   // Swing-hip twist scaling and the torque limit, last in every update.
   void finishTorques(const CharacterState& s, Eigen::Vector3d* torques) const;
+  void clampTorques(Eigen::Vector3d* torques) const;  // each joint's to maxTorque
 
   // params_ from the gait's keys at |v_d|, and the gait player's period and schedule from them;
   // with `restart` (a gait set before the first step) the player starts again from the schedule,
@@ -187,6 +200,12 @@ class Controller {
   Stand stand_ = Stand::Walking;
   int lifted_ = 0;        // steps in a row a planted foot has been off the ground
   int calm_ = 0;          // steps in a row it has been slow enough to come to a stand
+  // Getting up (gait/get_up.cpp): steps in a row it has been fallen while walking; each leg frame
+  // rolled up; steps since every one was; steps in a row it has stood straightened on its feet.
+  int downSteps_ = 0;
+  bool frameUp_[kMaxLegFrames] = {};
+  int risenSteps_ = 0;
+  int onFeetSteps_ = 0;
   double standYaw_ = 0;  // the heading it stands facing (set as it comes to a stand)
   // Per segment: a leg joint's orientation relative to its parent as it came to a stand (the
   // table's pose; identity for the other segments).

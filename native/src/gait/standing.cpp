@@ -154,6 +154,8 @@ void Controller::updateStand(const CharacterState& s, const Vector3d& comVelocit
       release(s, leg);
       return;
     }
+    case Stand::Down:  // getting up (gait/get_up.cpp) comes first: update() never gets here
+      return;
   }
 }
 

@@ -21,6 +21,32 @@ int BoxHitResult::falls() const {
   return static_cast<int>(std::count_if(hits.begin(), hits.end(), [](const BoxHit& h) { return h.fell; }));
 }
 
+int BoxHitResult::getUps() const {
+  return static_cast<int>(std::count_if(hits.begin(), hits.end(), [](const BoxHit& h) { return h.gotUpAfter >= 0; }));
+}
+
+namespace {
+
+// After a fall at `fellAt` (simulated time): steps `seconds` more and returns the seconds from the
+// fall until the controller last left its get-up (Controller::down; 0 if it never went down, a
+// stumble that tipped a leg frame past the fall test's 60° and caught itself), or -1 if at the
+// end it is down or fallen.
+double watchGetUp(Simulation& sim, double fellAt, double seconds) {
+  double upAt = fellAt;
+  bool wasDown = sim.controller(0).down();
+  const int steps = static_cast<int>(std::lround(seconds / physics::kFixedStep));
+  for (int step = 0; step < steps; ++step) {
+    sim.step(1);
+    const bool down = sim.controller(0).down();
+    if (wasDown && !down) upAt = sim.time();
+    wasDown = down;
+  }
+  if (wasDown || hasFallen(sim, 0)) return -1;
+  return upAt - fellAt;
+}
+
+}  // namespace
+
 double pageThrowSpeed(double distance) { return std::min(30.0, std::max(14.0, distance / 1.0)); }
 
 bool boxTouches(const Simulation& sim, int i) {
@@ -74,6 +100,7 @@ bool throwBox(const BoxHitOptions& o, TrialDraws& draw, BoxHit* out) {
     if (touched && hasFallen(sim, 0)) {
       hit.fell = true;
       hit.fallAfter = sim.time() - hit.throwTime;
+      if (o.getUpSeconds > 0) hit.gotUpAfter = watchGetUp(sim, sim.time(), o.getUpSeconds);
       break;
     }
   }

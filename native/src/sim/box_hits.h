@@ -14,7 +14,8 @@
 // (web/src/render/picking.ts: 14 m/s, faster beyond 14 m so that the flight stays within 1 s).
 // A throw that does not touch the character within its flight and 0.3 s more is a miss and is
 // thrown again from a new draw; a hit is judged 3 s later: fallen (the walking criteria's
-// hasFallen at any step after the hit) or not.
+// hasFallen at any step after the hit) or not. With getUpSeconds, a hit that knocked it over is
+// watched that much longer: whether the character got up by itself (gait/get_up.cpp).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -27,6 +28,9 @@ struct BoxHitOptions {
   WalkOptions walk;  // character, gait, goal speed, turn rate, terrain, heading, start phase, seed
   int hits = 50;     // hits to judge
   double half = 0.12;  // m, the box's half size (the page's BOX_HALF)
+  // s after a fall to watch for the character getting up by itself; 0: the episode ends at the
+  // fall.
+  double getUpSeconds = 0;
 };
 
 struct BoxHit {
@@ -35,6 +39,9 @@ struct BoxHit {
   double speed = 0;       // m/s, straight distance over flight time
   bool fell = false;      // within 3 s of the throw
   double fallAfter = -1;  // s from the throw to the fall, -1 if it did not fall
+  // With getUpSeconds: s from the fall until its controller was back on its feet (the last time,
+  // if it fell again), -1 if it was not on its feet, or fallen again, when the watch ended.
+  double gotUpAfter = -1;
 };
 
 // How long after a throw a hit is judged, s.
@@ -44,6 +51,7 @@ struct BoxHitResult {
   int throws = 0;  // thrown, hits and misses
   std::vector<BoxHit> hits;
   int falls() const;
+  int getUps() const;  // falls it got up from (gotUpAfter ≥ 0)
 };
 
 BoxHitResult runBoxHits(const BoxHitOptions& options);

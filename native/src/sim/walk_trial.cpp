@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gait/fall.h"
 #include "gait/heading.h"
 #include "physics/convert.h"
 
@@ -54,10 +55,8 @@ bool hasFallen(const physics::Character& ch, const physics::World& world) {
   const body::Morphology& m = ch.morphology();
   for (int lf : m.legFrames) {
     const physics::SegmentState s = ch.segmentState(lf);
-    const double ground = world.terrainHeight(s.position.x(), s.position.z());
-    if (s.position.y() - ground < 0.5 * m.segments[lf].center.y()) return true;
-    const Eigen::Vector3d up = s.orientation * Eigen::Vector3d::UnitY();
-    if (up.y() < std::cos(60.0 * kPi / 180.0)) return true;
+    if (gait::legFrameFallen(m.segments[lf], s.position, s.orientation, world.terrainHeight(s.position.x(), s.position.z())))
+      return true;
   }
   return false;
 }

@@ -61,3 +61,23 @@ TEST(BoxHits, WhatKnocksOverFollowsTheBox) {
   const BoxHitResult crate = runBoxHits(trial(Character::Biped, 5, 0.5));
   EXPECT_EQ(crate.falls(), static_cast<int>(crate.hits.size()));
 }
+
+TEST(BoxHits, AQuadrupedKnockedOverGetsUpByItselfAndWalksOn) {
+  // The demo's box knocks the dog over more often than not; watched 10 s after each fall, it rolls
+  // onto its belly, rises and walks on at its goal (gait/get_up.cpp): at most one in eight stays
+  // down.
+  BoxHitOptions o = trial(Character::Quadruped, 8, 0.12);
+  o.getUpSeconds = 10;
+  const BoxHitResult r = runBoxHits(o);
+  ASSERT_GE(r.falls(), 4);
+  EXPECT_GE(r.getUps(), r.falls() - 1);
+  for (const auto& h : r.hits) {
+    if (!h.fell) EXPECT_EQ(h.gotUpAfter, -1.0);
+    if (h.gotUpAfter >= 0) EXPECT_LE(h.gotUpAfter, 10.0);
+  }
+  // The watch changes nothing about the falls themselves.
+  o.getUpSeconds = 0;
+  const BoxHitResult unwatched = runBoxHits(o);
+  EXPECT_EQ(unwatched.falls(), r.falls());
+  EXPECT_EQ(unwatched.getUps(), 0);
+}

@@ -1,0 +1,134 @@
+// Probe, built only on request (`ninja -C build/native gaitlab_getup_log`): characters knocked
+// over by the box-hit trial's throws (sim/box_hits.h, the same draws), then watched for
+// SECONDS: when the controller noticed the fall, when it was back on its feet, and each leg
+// frame's roll as it got up (docs/controller-notes.md, "Getting up").
+//
+//   build/native/gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE] > log.txt
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include <btBulletDynamicsCommon.h>
+#include <map>
+
+#include "gait/heading.h"
+#include "gait/params_io.h"
+#include "sim/box_hits.h"
+#include "sim/simulation.h"
+#include "sim/walk_trial.h"
+
+using namespace gaitlab;
+
+namespace {
+
+double rollOf(const physics::SegmentState& s) {
+  const Eigen::Vector3d up = s.orientation * Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d left = s.orientation * Eigen::Vector3d::UnitX();
+  return std::atan2(-left.y(), up.y()) * 180.0 / gait::kPi;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::fprintf(stderr, "usage: gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE]\n");
+    return 2;
+  }
+  gait::GaitFile file;
+  if (const auto error = gait::loadGaitFile(argv[1], std::nullopt, &file)) {
+    std::fprintf(stderr, "%s: %s\n", argv[1], error->describe().c_str());
+    return 2;
+  }
+  sim::WalkOptions o;
+  o.character = file.character;
+  o.gait = &file.gait;
+  o.speed = std::atof(argv[2]);
+  o.seed = argc > 4 ? static_cast<uint32_t>(std::atol(argv[4])) : 7;
+  const int throws = std::max(1, std::atoi(argv[3]));
+  const double watch = argc > 5 ? std::atof(argv[5]) : 15.0;
+  const bool verbose = argc > 6 && std::atoi(argv[6]) != 0;
+
+  sim::TrialDraws draw(o.seed);
+  int fallen = 0, gotUp = 0, standing = 0, upAndStanding = 0;
+  double progress = 0;  // over the fallen: 1 − the worse leg frame's |roll| at the end / 180°
+  for (int t = 0; t < throws; ++t) {
+    sim::Simulation sim(1, o.seed);
+    sim::setUpWalk(sim, o);
+    const double walkFor = 2.0 + 2.0 * draw.unit();
+    const int segment = std::min(sim.character(0).segmentCount() - 1,
+                                 static_cast<int>(draw.unit() * sim.character(0).segmentCount()));
+    const double azimuth = 2 * gait::kPi * draw.unit(), distance = 8 + 10 * draw.unit(), height = 1.5 + 2.5 * draw.unit();
+    sim.step(static_cast<int>(std::lround(walkFor / physics::kFixedStep)));
+    const Eigen::Vector3d trunk = sim.character(0).segmentState(0).position;
+    const Eigen::Vector3d from(trunk.x() + distance * std::cos(azimuth), height, trunk.z() + distance * std::sin(azimuth));
+    const Eigen::Vector3d target = sim.character(0).segmentState(segment).position;
+    const double speed = sim::pageThrowSpeed((target - from).norm());
+    const sim::Intercept aim = sim.aimAt(0, segment, Eigen::Vector3d::Zero(), from, speed);
+    sim.throwBox(from, aim.velocity, 0.12);
+    const double thrown = sim.time();
+    double fellAt = -1, downAt = -1, upAt = -1;
+    const int steps = static_cast<int>(std::lround(watch / physics::kFixedStep));
+    const body::Morphology& m = sim.character(0).morphology();
+    for (int k = 0; k < steps; ++k) {
+      sim.step(1);
+      if (fellAt < 0 && sim::hasFallen(sim, 0)) fellAt = sim.time() - thrown;
+      const bool down = sim.controller(0).down();
+      if (down && downAt < 0) downAt = sim.time() - thrown;
+      if (!down && downAt >= 0 && upAt < 0) upAt = sim.time() - thrown;
+      if (verbose && fellAt >= 0 && k % 30 == 0) {
+        std::printf("  t %5.2f down %d", sim.time() - thrown, down ? 1 : 0);
+        for (int lf : m.legFrames) {
+          const physics::SegmentState st = sim.character(0).segmentState(lf);
+          std::printf("  roll %6.1f h %.2f", rollOf(st), st.position.y());
+        }
+        if (k % 120 == 0) {
+          for (size_t l = 0; l < m.legs.size(); ++l) {
+            const physics::SegmentState fr = sim.character(0).segmentState(m.legs[l].legFrame);
+            const physics::SegmentState ft = sim.character(0).segmentState(m.legs[l].foot);
+            const Eigen::Vector3d local = fr.orientation.conjugate() * (ft.position - fr.position);
+            std::printf("    leg %zu foot in frame (%.2f %.2f %.2f) height %.2f\n", l, local.x(), local.y(), local.z(), ft.position.y());
+          }
+        }
+        std::printf("\n");
+      }
+    }
+    const bool stands = !sim::hasFallen(sim, 0);
+    if (verbose) {  // who touches the ground, and where (root leg frame's coordinates)
+      const physics::Character& c = sim.character(0);
+      std::map<const btCollisionObject*, int> own;
+      for (int k = 0; k < c.segmentCount(); ++k) own[c.body(k)] = k;
+      btDispatcher& d = *const_cast<physics::World&>(sim.world(0)).dynamics().getDispatcher();
+      const physics::SegmentState root = c.segmentState(0);
+      for (int mi = 0; mi < d.getNumManifolds(); ++mi) {
+        const btPersistentManifold* mf = d.getManifoldByIndexInternal(mi);
+        const btCollisionObject* a = mf->getBody0();
+        const btCollisionObject* b = mf->getBody1();
+        if (!own.count(a)) std::swap(a, b);
+        if (!own.count(a) || own.count(b)) continue;
+        for (int p = 0; p < mf->getNumContacts(); ++p) {
+          const btManifoldPoint& pt = mf->getContactPoint(p);
+          if (pt.getDistance() > 0.005) continue;
+          const btVector3 w = mf->getBody0() == a ? pt.getPositionWorldOnA() : pt.getPositionWorldOnB();
+          const Eigen::Vector3d local = root.orientation.conjugate() * (Eigen::Vector3d(w.x(), w.y(), w.z()) - root.position);
+          std::printf("    contact %-22s (%.2f %.2f %.2f) impulse %.1f\n", m.segments[own[a]].name.c_str(), local.x(), local.y(), local.z(), pt.getAppliedImpulse());
+        }
+      }
+    }
+    if (fellAt >= 0) {
+      ++fallen;
+      if (upAt >= 0) ++gotUp;
+      if (stands) ++standing;
+      if (stands && upAt >= 0) ++upAndStanding;
+      double worst = 0;
+      for (int lf : m.legFrames) worst = std::max(worst, std::abs(rollOf(sim.character(0).segmentState(lf))));
+      progress += 1.0 - worst / 180.0;
+    }
+    std::printf("throw %2d part %2d fell %5.2f down %5.2f up %5.2f end %s", t, segment, fellAt, downAt, upAt,
+                stands ? "standing" : "fallen");
+    for (int lf : m.legFrames) std::printf(" roll %6.1f", rollOf(sim.character(0).segmentState(lf)));
+    std::printf("\n");
+  }
+  std::printf("fell %d, got up %d, standing at the end %d, both %d, progress %.3f\n", fallen, gotUp, standing,
+              upAndStanding, fallen ? progress / fallen : 0.0);
+  return 0;
+}

@@ -73,7 +73,7 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { skillChecks } from './lib/skills.mjs';
+import { GET_UP_SECONDS, skillChecks } from './lib/skills.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const cli = path.join(root, 'build/native/gaitlab');
@@ -373,22 +373,26 @@ async function measurePushes(character) {
   return { ...stamp, ladders };
 }
 
-// The box-hit trial, walking at the cruise speed and standing: 50 hits each, each its own episode.
+// The box-hit trial, walking at the cruise speed and standing: 50 hits each, each its own episode;
+// each fall watched GET_UP_SECONDS more for the character getting up by itself.
 async function measureBoxes(character) {
   const { cruise } = GOALS[character];
   const trials = await Promise.all([cruise, 0].map(async (speed) => {
     process.stderr.write(`${character}: ${BOX_HITS} box hits at ${speed} m/s\n`);
-    const r = await walkAsync(character, ['--speed', speed, '--box-hits', BOX_HITS, '--seed', 7]);
+    const r = await walkAsync(character, ['--speed', speed, '--box-hits', BOX_HITS, '--seed', 7, '--get-up', GET_UP_SECONDS]);
     const bySegment = {};
     for (const h of r.hits) {
       const s = (bySegment[h.segment] ??= { hits: 0, falls: 0 });
       s.hits++;
       s.falls += h.fell ? 1 : 0;
     }
+    const upTimes = r.hits.filter((h) => h.fell && h.got_up_after_s != null).map((h) => h.got_up_after_s).sort((a, b) => a - b);
     return { speed, throws: r.box_throws, hits: r.box_hits, falls: r.box_hit_falls, by_segment: bySegment,
-      met: r.box_hit_falls <= BOX_FALLS_ALLOWED * r.box_hits };
+      met: r.box_hit_falls <= BOX_FALLS_ALLOWED * r.box_hits,
+      get_ups: r.box_hit_get_ups, get_up_median_s: upTimes.length ? upTimes[Math.floor((upTimes.length - 1) / 2)] : null,
+      get_up_max_s: upTimes.length ? upTimes.at(-1) : null };
   }));
-  return { ...stamp, box_half_m: 0.12, trials };
+  return { ...stamp, box_half_m: 0.12, get_up_watch_s: GET_UP_SECONDS, trials };
 }
 
 // Starts from rest at 100 gait phases, 10 s each, at four goal speeds from the cruise speed to the
@@ -503,9 +507,9 @@ for (const character of characters) {
     else delete r.ramp_to_fastest_key;
   }
   SECTIONS.forEach((name, i) => { if (measured[i]) r[name] = measured[i]; });
-  // The skills read the sweep: checked again whenever either was measured.
-  if (r.skills && r.sweep && (only.includes('skills') || only.includes('sweep'))) {
-    r.skills.checks = skillChecks(character, r.sweep, r.skills, { seconds, paceFile: SWITCH_GAITS.pace, paceSpeeds: GOALS.quadruped.speeds });
+  // The skills read the sweep and the box hits' get-ups: checked again whenever one was measured.
+  if (r.skills && r.sweep && ['skills', 'sweep', 'boxes'].some((name) => only.includes(name))) {
+    r.skills.checks = skillChecks(character, r.sweep, r.skills, { seconds, paceFile: SWITCH_GAITS.pace, paceSpeeds: GOALS.quadruped.speeds }, r.boxes);
   }
   // Results of the previous layout (criteria at the top level) are not carried on.
   for (const old of ['straight', 'turns', 'terrain', 'robustness', 'largest_push_survived_90pct_n_s', 'checks', 'controller_us_per_step', 'all_met']) delete r[old];
@@ -580,9 +584,11 @@ for (const [character, r] of Object.entries(report.characters)) {
   const bx = r.boxes;
   if (bx) {
     lines.push(`### Box hits (boxes thrown as the demo throws them, ${2 * bx.box_half_m} m, 8.3 kg, 14–18 m/s, at random body parts; ${bx.measured.slice(0, 10)}, ${bx.commit})`, '',
-      '| goal m/s | hits (throws) | knocked over | at most 1 in 5? | falls / hits by body part (render order) |', '|---|---|---|---|---|');
+      `| goal m/s | hits (throws) | knocked over | at most 1 in 5? | got up by itself within ${bx.get_up_watch_s ?? '–'} s (median, slowest) | falls / hits by body part (render order) |`, '|---|---|---|---|---|---|');
     for (const t of bx.trials) {
-      lines.push(`| ${t.speed} | ${t.hits} (${t.throws}) | ${t.falls} (${Math.round((100 * t.falls) / t.hits)} %) | ${t.met ? 'yes' : '**no**'} | ` +
+      const up = typeof t.get_ups !== 'number' ? 'not watched'
+        : `${t.get_ups} of ${t.falls}` + (t.get_up_median_s != null ? ` (${t.get_up_median_s.toFixed(1)} s, ${t.get_up_max_s.toFixed(1)} s)` : '');
+      lines.push(`| ${t.speed} | ${t.hits} (${t.throws}) | ${t.falls} (${Math.round((100 * t.falls) / t.hits)} %) | ${t.met ? 'yes' : '**no**'} | ${up} | ` +
         `${Object.entries(t.by_segment).map(([k, s]) => `${k}: ${s.falls}/${s.hits}`).join(', ')} |`);
     }
     lines.push('');

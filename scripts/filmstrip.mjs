@@ -7,6 +7,8 @@
 //                              [--speed M_S] [--gait walk|trot|pace] [--out docs/images/biped-gait.png]
 //                              [--patch '{"period": 0.6}']   (an edit of the gait, as the editors make)
 //                              [--params FILE]   (a gait file, given to the page as a link carries one)
+//                              [--throw]   (after the warm-up, a box thrown at it from the camera, as
+//                                           the demo's shift-click throws one: a fall, and getting up)
 //   node scripts/filmstrip.mjs --creature insect [...]   (a shipped creature, public/creatures/insect.json,
 //                                                         alone in the scene: ?characters=0&creature=insect)
 //
@@ -42,6 +44,7 @@ try {
       patch: { type: 'string' },
       params: { type: 'string' },
       out: { type: 'string' },
+      throw: { type: 'boolean', default: false },
     },
   }));
 } catch (error) {
@@ -149,6 +152,14 @@ try {
     await page.evaluate(([a, b]) => window.gaitlab.view(a, b), [from, to]);
   };
 
+  if (args.throw) {
+    await lookAt();
+    await page.waitForTimeout(300);
+    await page.evaluate((id) => {
+      const c = window.gaitlab.characters().find((x) => x.id === id);
+      window.gaitlab.throwBox([c.position[0], c.position[1], c.position[2]]);
+    }, subject.id);
+  }
   const [w, h] = view === 'biped' ? [260, 380] : [400, 300];  // one frame, px
   const shots = [];
   for (let f = 0; f < frames; ++f) {

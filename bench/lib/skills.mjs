@@ -5,7 +5,8 @@
 // feet that lift off together, Hildebrand 1965, 1977). The criteria: standing at goal 0; the
 // biped's walk from 0.2 to 1.6 m/s with no flight and its run at 2.5 m/s or more with a flight
 // phase; the quadruped's walk, its trot to 2.5 m/s, a canter or gallop with a flight phase at
-// 3.5 m/s or more, and its pace; and getting up after a fall, which nothing here does yet.
+// 3.5 m/s or more, and its pace; and getting up after a fall (native/src/gait/get_up.cpp), read
+// from the box-hit trial's falls, each watched GET_UP_SECONDS for the character getting up.
 
 export const WALK_RANGE = [0.2, 1.6];   // m/s, the biped's walk
 export const RUN_FROM = 2.5;            // m/s, the biped's run
@@ -13,15 +14,18 @@ export const TROT_TO = 2.5;             // m/s, the quadruped's trot
 export const GALLOP_FROM = 3.5;         // m/s, the quadruped's canter or gallop
 export const FLIGHT = 0.02;             // a flight phase: no foot down at least 2 % of the time
 export const STAND_SHARE = 0.9;         // standing: on planted feet at least 90 % of the time at goal 0
+export const GET_UP_SECONDS = 10;       // s after a fall the box-hit trial watches for a get-up
+export const GET_UP_SHARE = 0.9;        // getting up: from at least 90 % of the box-hit trial's falls
 
 /**
  * The skill checks of one character: `sweep` is the walking benchmark's sweep section (rows of
  * goal, fell, fall_time_s, mean_speed_m_s, footfall, duty_factor_measured, flight_fraction,
  * standing_fraction; step), `skills` its skills section (the quadruped's pace runs), `options`
- * the run's seconds, the pace file's name and the speeds it was walked at. Returns rows of
+ * the run's seconds, the pace file's name and the speeds it was walked at, `boxes` its box-hit
+ * section (trials of falls and get_ups, get_up_watch_s; null when not measured). Returns rows of
  * { what, ok, value }, as every section of the benchmark does.
  */
-export function skillChecks(character, sweep, skills, { seconds, paceFile, paceSpeeds }) {
+export function skillChecks(character, sweep, skills, { seconds, paceFile, paceSpeeds }, boxes = null) {
   const within = (x, share) => !x.fell && Math.abs(x.mean_speed_m_s - x.goal) <= share * x.goal;
   // Goals as runs of consecutive sweep steps: "0.4–1.2, 1.4–2.6 m/s".
   const range = (goals) => {
@@ -74,7 +78,19 @@ export function skillChecks(character, sweep, skills, { seconds, paceFile, paceS
       ok: pace.length > 0 && pace.every((x) => within(x, 0.15) && x.footfall === 'pace'),
       value: pace.map((x) => `${x.goal}: ${x.fell ? `fell at ${x.fall_time_s.toFixed(1)} s` : `${x.mean_speed_m_s.toFixed(2)} m/s, ${x.footfall}`}`).join('; ') || 'not measured' });
   }
-  checks.push({ what: 'gets up by itself after a fall', ok: false, value: 'not built: a fallen character lies where it fell until it is reset' });
+  checks.push(getUpCheck(character, boxes));
   return checks;
 }
 
+
+// Getting up: from the falls of the box-hit trial (walking and standing), each watched for
+// GET_UP_SECONDS.
+function getUpCheck(character, boxes) {
+  const what = `gets up by itself after a fall: from ≥ ${100 * GET_UP_SHARE} % of the box-hit trial's falls within ${GET_UP_SECONDS} s`;
+  const trials = (boxes?.trials ?? []).filter((t) => typeof t.get_ups === 'number');
+  if (!trials.length) return { what, ok: false, value: 'not measured (the box-hit trial without its get-up watch)' };
+  const falls = trials.reduce((n, t) => n + t.falls, 0), ups = trials.reduce((n, t) => n + t.get_ups, 0);
+  const each = trials.map((t) => `${t.speed} m/s: ${t.get_ups} of ${t.falls}` + (t.get_up_median_s != null ? `, median ${t.get_up_median_s.toFixed(1)} s` : '')).join('; ');
+  const unbuilt = character === 'biped' ? ' (not built for a body on one leg frame: the biped has no arms to rise on)' : '';
+  return { what, ok: falls > 0 && ups >= GET_UP_SHARE * falls, value: `got up from ${ups} of ${falls} falls (${each})${unbuilt}` };
+}

@@ -54,6 +54,24 @@ test('`walk --box-hits` runs the box-hit trial, natively and as WASM, hit for hi
   assert.deepEqual(JSON.parse(b.stdout).hits.map((h) => h.segment), ja.hits.map((h) => h.segment));
 });
 
+test('`walk --box-hits --get-up` watches each fall for the quadruped getting up, natively and as WASM', () => {
+  const args = ['walk', '--character', 'quadruped', '--speed', '0.4', '--box-hits', '3', '--seed', '7', '--get-up', '10', '--json'];
+  for (const [cmd, pre] of [[native, []], [process.execPath, wasm]]) {
+    const r = run(cmd, [...pre, ...args]);
+    assert.equal(r.status, 0, r.stderr);
+    const j = JSON.parse(r.stdout);
+    assert.equal(j.get_up_watch_s, 10);
+    const falls = j.hits.filter((h) => h.fell);
+    assert.ok(falls.length >= 2, `the demo's box knocks the dog over (${falls.length} of 3)`);
+    assert.equal(j.box_hit_get_ups, falls.filter((h) => h.got_up_after_s !== null).length);
+    // The roll after a fall is chaotic: the two builds' floating point part within it, so each
+    // is judged on its own.
+    assert.ok(j.box_hit_get_ups >= falls.length - 1, `it got up from ${j.box_hit_get_ups} of ${falls.length} falls`);
+    for (const h of falls) if (h.got_up_after_s !== null) assert.ok(h.got_up_after_s >= 0 && h.got_up_after_s <= 10);
+    for (const h of j.hits.filter((x) => !x.fell)) assert.equal(h.got_up_after_s, undefined, 'a hit it stood is not watched');
+  }
+});
+
 test('--version works natively and as WASM', () => {
   assert.match(run(native, ['--version']).stdout, /^gaitlab \d+\.\d+\.\d+/);
   assert.match(run(process.execPath, [...wasm, '--version']).stdout, /^gaitlab \d+\.\d+\.\d+/);
@@ -67,6 +85,8 @@ for (const [args, message] of [
   [['walk', '--bogus'], /unknown option '--bogus'/],
   [['walk', '--seed'], /option --seed needs a value/],
   [['walk', '--box-hits', '0'], /--box-hits: 0 is outside/],
+  [['walk', '--box-hits', '2', '--get-up', '99'], /--get-up: 99 is outside/],
+  [['walk', '--get-up', '5'], /--get-up watches the box-hit trial's falls: give --box-hits too/],
   [['walk', '--start-phase', '1.5'], /--start-phase: 1.5 is outside/],
   [['fly'], /unknown command 'fly'/],
 ]) {

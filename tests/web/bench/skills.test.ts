@@ -59,8 +59,20 @@ describe('skillChecks: the biped', () => {
     expect(byWhat(checks, 'stands').value).toBe('fell at 3.0 s');
   });
 
-  it('says that nothing gets up yet', () => {
-    expect(byWhat(skillChecks('biped', sweep(2.9, () => ({})), null, options), 'gets up').ok).toBe(false);
+  it('reads getting up from the box-hit trial: unmeasured, too few, and enough falls got up from', () => {
+    const walked = sweep(2.9, () => ({}));
+    expect(byWhat(skillChecks('biped', walked, null, options), 'gets up').ok).toBe(false);
+    expect(byWhat(skillChecks('biped', walked, null, options), 'gets up').value).toMatch(/not measured/);
+    const boxes = (ups: number[]) => ({ trials: [{ speed: 0.5, falls: 10, get_ups: ups[0], get_up_median_s: 4 }, { speed: 0, falls: 10, get_ups: ups[1], get_up_median_s: null }] });
+    const none = byWhat(skillChecks('biped', walked, null, options, boxes([0, 0])), 'gets up');
+    expect(none.ok).toBe(false);
+    expect(none.value).toMatch(/^got up from 0 of 20 falls .*not built/);
+    expect(byWhat(skillChecks('biped', walked, null, options, boxes([9, 8])), 'gets up').ok).toBe(false);  // 17 of 20
+    const most = byWhat(skillChecks('biped', walked, null, options, boxes([10, 8])), 'gets up');  // 18 of 20: 90 %
+    expect(most.ok).toBe(true);
+    expect(most.value).toMatch(/0\.5 m\/s: 10 of 10, median 4\.0 s; 0 m\/s: 8 of 10/);
+    // The trial without its watch (an older result) says nothing about getting up.
+    expect(byWhat(skillChecks('biped', walked, null, options, { trials: [{ speed: 0.5, falls: 10 }] }), 'gets up').ok).toBe(false);
   });
 });
 

@@ -3,7 +3,7 @@
 // SECONDS: when the controller noticed the fall, when it was back on its feet, and each leg
 // frame's roll as it got up (docs/controller-notes.md, "Getting up").
 //
-//   build/native/gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE] > log.txt
+//   build/native/gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE] [TERRAIN] > log.txt
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -31,7 +31,7 @@ double rollOf(const physics::SegmentState& s) {
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr, "usage: gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE]\n");
+    std::fprintf(stderr, "usage: gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE] [TERRAIN]\n");
     return 2;
   }
   gait::GaitFile file;
@@ -47,6 +47,10 @@ int main(int argc, char** argv) {
   const int throws = std::max(1, std::atoi(argv[3]));
   const double watch = argc > 5 ? std::atof(argv[5]) : 15.0;
   const bool verbose = argc > 6 && std::atoi(argv[6]) != 0;
+  if (argc > 7 && !physics::parseTerrain(argv[7], &o.terrain)) {
+    std::fprintf(stderr, "%s: not flat, slope or bumps\n", argv[7]);
+    return 2;
+  }
 
   sim::TrialDraws draw(o.seed);
   int fallen = 0, gotUp = 0, standing = 0, upAndStanding = 0;

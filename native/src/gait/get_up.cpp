@@ -15,7 +15,8 @@
 //     sideways swing into the ground), which lifts the back and rolls the body towards its belly;
 //     the upper legs tuck, so that no foot held out props the body on the side it rolls to;
 //   - up (rolled less than kUpRoll, down again past kDownRoll): legs under the body, wide and
-//     crouched; once every leg frame is up, they straighten into a stance over kStandTime.
+//     crouched, the knees levelling the leg frame; once every leg frame is up, they straighten
+//     into a stance over kStandTime.
 // The spine twists each section against its limits so that the leg frames do not roll as one:
 // while the one ahead is down the one behind leads it by kSpineTwist towards upright; once the one
 // ahead is up the one behind follows it by as much; and while either is down it arches its back.
@@ -61,6 +62,9 @@ constexpr double kCrouchKnee = 1.885;    // rad, the crouch's knees
 constexpr double kStandDelay = 0.3;      // s every leg frame up before the legs straighten
 constexpr double kStandTime = 0.8;       // s to straighten
 constexpr double kStandKnee = 0.3;       // rad, the knees straightened
+// Up, the knees level the leg frame: each lower-side knee straightens, each upper-side one bends,
+// by this much per radian of roll, at most kLevelMax (rad).
+constexpr double kLevelKnee = 1.0, kLevelMax = 0.1;
 constexpr double kSpineTwist = 0.192;    // rad per spine joint (beyond its limit: pressed against it)
 constexpr double kSpineArch = 0.4;       // rad per spine joint, likewise
 constexpr double kHipKp = 377.0, kHipKd = 3.0;    // N·m/rad, N·m·s/rad
@@ -137,7 +141,11 @@ void Controller::getUp(const CharacterState& s, Vector3d* torques) {
     double outwards = 0, swing = 0, twist = 0, knee = 0;
     if (frameUp_[f]) {
       outwards = kCrouchAbduct;
-      knee = (1 - stand) * kCrouchKnee + stand * kStandKnee;
+      // The legs on the lower side straighten and those on the upper side bend, levelling the leg
+      // frame: on a slope the stand could not hold the tilt left over and fell again.
+      const double level = std::clamp(kLevelKnee * roll[f], -kLevelMax, kLevelMax);
+      knee = (1 - stand) * kCrouchKnee + stand * kStandKnee - level * side;
+      knee = std::clamp(knee, 0.0, kKneeFold);
     } else if (r >= kOnBackRoll) {
       outwards = lower ? kHipLimit : -kHipLimit;
       knee = kOnBackKnee;

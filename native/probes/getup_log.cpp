@@ -73,8 +73,10 @@ int main(int argc, char** argv) {
     double fellAt = -1, downAt = -1, upAt = -1;
     const int steps = static_cast<int>(std::lround(watch / physics::kFixedStep));
     const body::Morphology& m = sim.character(0).morphology();
+    Eigen::Vector3d lastLeg = Eigen::Vector3d::Zero();  // the root leg frame 3 s before the end
     for (int k = 0; k < steps; ++k) {
       sim.step(1);
+      if (k == steps - static_cast<int>(std::lround(3.0 / physics::kFixedStep))) lastLeg = sim.character(0).segmentState(0).position;
       if (fellAt < 0 && sim::hasFallen(sim, 0)) fellAt = sim.time() - thrown;
       const bool down = sim.controller(0).down();
       if (down && downAt < 0) downAt = sim.time() - thrown;
@@ -127,8 +129,10 @@ int main(int argc, char** argv) {
       for (int lf : m.legFrames) worst = std::max(worst, std::abs(rollOf(sim.character(0).segmentState(lf))));
       progress += 1.0 - worst / 180.0;
     }
+    const Eigen::Vector3d moved = sim.character(0).segmentState(0).position - lastLeg;
     std::printf("throw %2d part %2d fell %5.2f down %5.2f up %5.2f end %s", t, segment, fellAt, downAt, upAt,
                 stands ? "standing" : "fallen");
+    std::printf(" last3s %.2f m", std::hypot(moved.x(), moved.z()));
     for (int lf : m.legFrames) std::printf(" roll %6.1f", rollOf(sim.character(0).segmentState(lf)));
     std::printf("\n");
   }

@@ -94,6 +94,12 @@ Controller::Controller(const body::Morphology& morphology, const GaitParams& par
     g.toe = ahead + foot.halfExtents.z();
     g.heel = foot.halfExtents.z() - ahead;
     g.halfWidth = foot.halfExtents.x();
+    // A ball hip's limits are [forward swing, twist, sideways swing] (body/creature.h); the knee's
+    // flexion is its upper limit when it points forward, its lower mirrored when it points back.
+    const body::Joint& hip = upper.joint;
+    g.hipFold = leg.kneeBend > 0 ? hip.upper[0] : hip.lower[0];
+    g.hipSideways = std::min(hip.upper[2], -hip.lower[2]);
+    g.kneeFlexion = leg.kneeBend > 0 ? lower.joint.upper[0] : -lower.joint.lower[0];
     geometry_.push_back(g);
   }
   liftOff_.assign(m_.legs.size(), Vector3d::Zero());
@@ -176,7 +182,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   comVelocity /= mass;
   comPosition /= mass;
   com_ = comPosition;
-  if (getsUp(s, torques)) return;  // fallen: getting up (gait/get_up.cpp) before it walks again
+  if (getsUp(s, dt, torques)) return;  // fallen: getting up (gait/get_up.cpp) before it walks again
   boundTurnLead(comVelocity);
   Vector3d velocityH = worldToHeading(yaw, comVelocity);
   velocityH.y() = 0;
@@ -379,6 +385,13 @@ void Controller::finishTorques(const CharacterState& s, Vector3d* torques) const
     t -= (1.0 - params_.gains.hipTwistScale) * t.dot(axis) * axis;
   }
   clampTorques(torques);
+}
+
+void Controller::jointHold(int seg, const CharacterState& s, const Quaterniond& relative, double kp, double kd,
+                           Vector3d* torques) const {
+  const BodyState& c = s.segments[seg];
+  const BodyState& p = s.segments[m_.segments[seg].parent];
+  torques[seg] += jointPd(kp, kd, p.orientation, c.orientation, relative, p.angularVelocity, c.angularVelocity);
 }
 
 void Controller::clampTorques(Vector3d* torques) const {
@@ -674,13 +687,7 @@ void Controller::spine(const CharacterState& s, Vector3d* torques) {
     for (size_t i = first; i < m_.spine.size() && m_.spine[i] < back; ++i) joints[count++] = m_.spine[i];
     const size_t links = static_cast<size_t>(count);
     joints[count++] = back;
-    for (int j = 0; j < count; ++j) {
-      const int child = joints[j];
-      const BodyState& c = s.segments[child];
-      const BodyState& pa = s.segments[m_.segments[child].parent];
-      torques[child] += jointPd(k.spineKp, k.spineKd, pa.orientation, c.orientation,
-                                Quaterniond::Identity(), pa.angularVelocity, c.angularVelocity);
-    }
+    for (int j = 0; j < count; ++j) jointHold(joints[j], s, Quaterniond::Identity(), k.spineKp, k.spineKd, torques);
     for (size_t li = 0; li < links; ++li) {
       const int link = joints[li];
       const SpineWeights w = spineGravityWeights(s.segments[back].position, s.segments[front].position,

@@ -84,6 +84,10 @@ class Controller {
     // The sole around the ankle, in the foot's frame: how far the centre of pressure can move
     // before the foot tips (toe and heel along +z/−z, half the width along x).
     double toe, heel, halfWidth;
+    // The joints' limits the get-up's poses press against (gait/get_up.cpp): the hip's swing that
+    // folds the foot over the back (signed as the knee bends), the hip's sideways swing either
+    // way, and the knee's flexion.
+    double hipFold, hipSideways, kneeFlexion;
   };
 
   // `load`: the weight this stance leg carries (N), for the support limit of its ankle.
@@ -146,11 +150,11 @@ class Controller {
   SupportPolygon supportPolygon(const CharacterState& s) const;  // of the stance feet's soles
   // Getting up after a fall (gait/get_up.cpp). isDown: the walking criteria's fall test
   // (gait/fall.h) on every leg frame. getsUp notes a fall and, while down, writes the get-up's
-  // torques (getUp) and returns true. jointHold: a joint PD holding `segment` at `relative` to its
-  // parent.
+  // torques (getUp) and returns true.
   bool isDown(const CharacterState& s) const;
-  bool getsUp(const CharacterState& s, Eigen::Vector3d* torques);
-  void getUp(const CharacterState& s, Eigen::Vector3d* torques);
+  bool getsUp(const CharacterState& s, double dt, Eigen::Vector3d* torques);
+  void getUp(const CharacterState& s, double dt, Eigen::Vector3d* torques);
+  // A joint PD (pd.h, jointPd) holding `segment` at `relative` to its parent, added to its torque.
   void jointHold(int segment, const CharacterState& s, const Eigen::Quaterniond& relative, double kp,
                  double kd, Eigen::Vector3d* torques) const;
   // Swing-hip twist scaling and the torque limit, last in every update.

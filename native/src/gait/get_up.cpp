@@ -20,8 +20,9 @@
 // The spine twists each section against its limits so that the leg frames do not roll as one:
 // while the one ahead is down the one behind leads it by kSpineTwist towards upright; once the one
 // ahead is up the one behind follows it by as much; and while either is down it arches its back.
-// Every joint is a PD towards its pose (the table's gains, standing.cpp). The numbers were found
-// by a search over these poses (the controller notes give it and its validation).
+// Every joint is a PD towards its pose; the poses press against the joints' own limits (the hip's
+// fold and sideways swing, the knee's flexion: LegGeometry). The numbers were found by a search
+// over these poses (the controller notes give it and its validation).
 #include <algorithm>
 #include <cmath>
 
@@ -38,7 +39,6 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kStep = 1.0 / 120;  // s, the controller's fixed step
 constexpr double kDownAfter = 0.3;   // s fallen before it stops walking and gets up
 constexpr double kOnFeetFor = 0.5;   // s standing, straightened, before it hands over to the stand
 constexpr double kDegree = kPi / 180.0;
@@ -49,9 +49,6 @@ constexpr double kDownRoll = 75.0 * kDegree;       // ... and down again above t
 constexpr double kBackEdgeRoll = 90.2 * kDegree;   // on the back's edge of its side above this
 constexpr double kOnBackRoll = 123.4 * kDegree;    // on its back above this
 
-constexpr double kHipLimit = 0.35;  // rad, the hip's sideways swing the poses press against
-constexpr double kHipFold = 1.2;    // rad, the hip's swing that folds a foot over the back
-constexpr double kKneeFold = 2.4;   // rad, the knee folded
 constexpr double kPushKnee = 2.35;  // rad, a pushing leg's knee
 constexpr double kPushTwist = -0.13;  // rad, a pushing leg's hip twist (signed by knee and side)
 constexpr double kTuck = 0.95;        // share of the fold of a tucked leg's hip and knee
@@ -81,28 +78,21 @@ bool Controller::isDown(const CharacterState& s) const {
   return false;
 }
 
-bool Controller::getsUp(const CharacterState& s, Vector3d* torques) {
+bool Controller::getsUp(const CharacterState& s, double dt, Vector3d* torques) {
   if (!standsAsTable()) return false;  // the biped has no arms to rise on: not built
   if (stand_ != Stand::Down) {
     downSteps_ = isDown(s) ? downSteps_ + 1 : 0;
-    if (downSteps_ * kStep < kDownAfter) return false;
+    if (downSteps_ * dt < kDownAfter) return false;
     stand_ = Stand::Down;
     onFeetSteps_ = 0;
     risenSteps_ = 0;
     for (bool& up : frameUp_) up = false;
   }
-  getUp(s, torques);
+  getUp(s, dt, torques);
   return true;
 }
 
-void Controller::jointHold(int seg, const CharacterState& s, const Quaterniond& relative, double kp,
-                           double kd, Vector3d* torques) const {
-  const BodyState& c = s.segments[seg];
-  const BodyState& p = s.segments[m_.segments[seg].parent];
-  torques[seg] += jointPd(kp, kd, p.orientation, c.orientation, relative, p.angularVelocity, c.angularVelocity);
-}
-
-void Controller::getUp(const CharacterState& s, Vector3d* torques) {
+void Controller::getUp(const CharacterState& s, double dt, Vector3d* torques) {
   // Each leg frame's roll about the body's long axis: +90° on its left side, ±180° on its back.
   const int frames = static_cast<int>(m_.legFrames.size());
   double roll[kMaxLegFrames];
@@ -115,7 +105,7 @@ void Controller::getUp(const CharacterState& s, Vector3d* torques) {
   bool allUp = true;
   for (int f = 0; f < frames; ++f) allUp = allUp && frameUp_[f];
   risenSteps_ = allUp ? risenSteps_ + 1 : 0;
-  const double stand = std::clamp((risenSteps_ * kStep - kStandDelay) / kStandTime, 0.0, 1.0);
+  const double stand = std::clamp((risenSteps_ * dt - kStandDelay) / kStandTime, 0.0, 1.0);
 
   // The spine, section by section (a child's twist θ about z rolls it by −θ against its parent).
   for (int f = 1; f < frames; ++f) {
@@ -132,11 +122,11 @@ void Controller::getUp(const CharacterState& s, Vector3d* torques) {
 
   for (size_t l = 0; l < m_.legs.size(); ++l) {
     const body::Leg& leg = m_.legs[l];
-    const double side = geometry_[l].side;  // +1 left
+    const LegGeometry& g = geometry_[l];
+    const double side = g.side;  // +1 left
     const int f = legFrameIndex(leg);
     const double r = std::abs(roll[f]);
     const bool lower = side == (roll[f] > 0 ? 1.0 : -1.0);  // on the side nearer the ground
-    const double fold = kHipFold * leg.kneeBend;  // the hip's swing that folds the foot over the back
     // The hip's pose: its sideways swing (outwards positive), forward swing and twist.
     double outwards = 0, swing = 0, twist = 0, knee = 0;
     if (frameUp_[f]) {
@@ -145,22 +135,22 @@ void Controller::getUp(const CharacterState& s, Vector3d* torques) {
       // frame: on a slope the stand could not hold the tilt left over and fell again.
       const double level = std::clamp(kLevelKnee * roll[f], -kLevelMax, kLevelMax);
       knee = (1 - stand) * kCrouchKnee + stand * kStandKnee - level * side;
-      knee = std::clamp(knee, 0.0, kKneeFold);
+      knee = std::clamp(knee, 0.0, g.kneeFlexion);
     } else if (r >= kOnBackRoll) {
-      outwards = lower ? kHipLimit : -kHipLimit;
+      outwards = lower ? g.hipSideways : -g.hipSideways;
       knee = kOnBackKnee;
     } else if (r >= kBackEdgeRoll) {
       knee = kHeldOutKnee;
     } else if (lower) {
       // Folded over the back, the foot points up the body: swinging the hip inwards presses it
       // outwards, into the ground.
-      swing = fold;
+      swing = g.hipFold;
       knee = kPushKnee;
-      outwards = -kHipLimit;
+      outwards = -g.hipSideways;
       twist = kPushTwist * leg.kneeBend * side;
     } else {
-      swing = -kTuck * fold;
-      knee = kTuck * kKneeFold;
+      swing = -kTuck * g.hipFold;
+      knee = kTuck * g.kneeFlexion;
     }
     const Quaterniond hip(AngleAxisd(side * outwards, Vector3d::UnitZ()) * AngleAxisd(swing, Vector3d::UnitX()) *
                           AngleAxisd(twist, Vector3d::UnitY()));
@@ -172,7 +162,7 @@ void Controller::getUp(const CharacterState& s, Vector3d* torques) {
   // On its feet: straightened, and no longer fallen, for kOnFeetFor: it stands, holding every foot
   // that lands (standing.cpp), and walks on if its goal moves.
   onFeetSteps_ = stand == 1.0 && !isDown(s) ? onFeetSteps_ + 1 : 0;
-  if (onFeetSteps_ * kStep >= kOnFeetFor) {
+  if (onFeetSteps_ * dt >= kOnFeetFor) {
     stand_ = Stand::Settling;
     player_.hold();
     downSteps_ = 0;

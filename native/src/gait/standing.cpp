@@ -235,13 +235,8 @@ void Controller::plantedTable(const CharacterState& s, Vector3d* torques) {
     accumulateJointTorques(legChain(l, s), points[l], -forces[l], torques, segments);
     // Every joint of the leg holds the pose it came to rest in.
     int segs[4];
-    for (int i = 0, n = leg.segments(segs); i < n; ++i) {
-      const int seg = segs[i];
-      const BodyState& child = s.segments[seg];
-      const BodyState& parent = s.segments[m_.segments[seg].parent];
-      torques[seg] += jointPd(kTableKp, kTableKd, parent.orientation, child.orientation, standPose_[seg],
-                              parent.angularVelocity, child.angularVelocity);
-    }
+    for (int i = 0, n = leg.segments(segs); i < n; ++i)
+      jointHold(segs[i], s, standPose_[segs[i]], kTableKp, kTableKd, torques);
     limitToSupport(l, s, std::max(0.0, forces[l].y()), torques);
   }
 }

@@ -29,6 +29,19 @@ constexpr double kContactGap = 0.01;
 // Speed tracking's lag: up to kTrackingLag (s), tried in kTrackingLagSteps steps (0.05 s).
 constexpr double kTrackingLag = 1.0;
 constexpr int kTrackingLagSteps = 20;
+
+// Mean speed is along the path: heading-frame forward displacement would hide sideways drift,
+// and a turning character's chord understates its path. The second half's path is summed over
+// pieces of 1 s, each chord taken as the arc of the angle turned over it: a piece turns far less
+// than half a circle, where one chord over a long turn (more than a whole circle in a minute at
+// 0.3 rad/s) wraps round and says nothing. A walk told to go straight wanders and sways too, so
+// the pieces read its speed a few tenths of a per cent above one chord over the half would
+// (the canter at 3.5 m/s: 3.224 against 3.217 m/s).
+constexpr int kPathPieceSteps = 120;
+double arcLength(const Eigen::Vector3d& chordVector, double turned) {
+  const double chord = std::hypot(chordVector.x(), chordVector.z());
+  return std::abs(turned) > 1e-3 ? chord * (turned / 2) / std::sin(turned / 2) : chord;
+}
 }  // namespace
 
 double goalSpeedAt(const WalkOptions& o, double t) {
@@ -90,6 +103,9 @@ WalkResult runWalk(const WalkOptions& o) {
   const Eigen::Vector3d start = rootState().position;
   const double startHeading = gait::headingOf(rootState().orientation);
   Eigen::Vector3d halfPos = start;
+  // The second half's path, summed over pieces of kPathPieceSteps (mean speed, below).
+  Eigen::Vector3d piecePos = start;
+  double pieceUnwrapped = 0, pathLength = 0;
   Eigen::Vector3d driftStart = start;  // where the drift window began (the start until then)
   double unwrapped = 0, lastHeading = startHeading, halfUnwrapped = 0;
   double nextPush = o.pushEvery > 0 && o.pushImpulse > 0 ? 2.0 : -1;
@@ -146,6 +162,13 @@ WalkResult runWalk(const WalkOptions& o) {
     if (step + 1 == half) {
       halfPos = s.position;
       halfUnwrapped = unwrapped;
+      piecePos = s.position;
+      pieceUnwrapped = unwrapped;
+    }
+    if (step + 1 > half && ((step + 1 - half) % kPathPieceSteps == 0 || step + 1 == steps)) {
+      pathLength += arcLength(s.position - piecePos, unwrapped - pieceUnwrapped);
+      piecePos = s.position;
+      pieceUnwrapped = unwrapped;
     }
     ++stepsRun;
     if (sim.controller(0).standing()) ++standingSteps;
@@ -179,15 +202,8 @@ WalkResult runWalk(const WalkOptions& o) {
   r.distance = std::hypot(d.x(), d.z());
   const double secondHalf = elapsed - half * physics::kFixedStep;
   if (!r.fell && secondHalf > 0) {
-    const Eigen::Vector3d dh = end.position - halfPos;
-    // Speed along the path: heading-frame forward displacement would hide sideways drift, and a
-    // turning character's chord would understate it, so take the path length of the trace-free
-    // estimate: chord over the half, corrected for the turned arc.
-    const double turned = unwrapped - halfUnwrapped;
-    const double chord = std::hypot(dh.x(), dh.z());
-    const double arc = std::abs(turned) > 1e-3 ? chord * (turned / 2) / std::sin(turned / 2) : chord;
-    r.meanSpeed = std::abs(arc) / secondHalf;
-    r.yawRate = turned / secondHalf;
+    r.meanSpeed = pathLength / secondHalf;
+    r.yawRate = (unwrapped - halfUnwrapped) / secondHalf;
   }
   const Eigen::Vector3d drift = end.position - (steps > driftFrom ? driftStart : end.position);
   r.positionDrift = std::hypot(drift.x(), drift.z());

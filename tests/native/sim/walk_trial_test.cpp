@@ -752,6 +752,24 @@ TEST(WalkTrial, APushHeldOverTimeGivesTheImpulseItNames) {
   EXPECT_NEAR(bodyVelocity, 30 / mass, 0.15 * 30 / mass);
 }
 
+// Mean speed is measured along the path. One chord over the run's second half, corrected for the
+// angle turned, said nothing once the half turned through about a whole circle (its chord then
+// shrinks to the centre's wander): the biped turning 0.5 rad/s at 1 m/s for 25 s read 2.22 m/s.
+TEST(WalkTrial, ATurningWalksMeanSpeedIsAlongItsPathThroughAWholeCircle) {
+  WalkOptions o;
+  o.character = Character::Biped;
+  o.speed = 1.0;
+  o.turnRate = 0.5;
+  o.seconds = 25;  // the second half turns 6.3 rad
+  const auto turning = runWalk(o);
+  ASSERT_FALSE(turning.fell);
+  ASSERT_NEAR(std::abs(turning.yawRate) * o.seconds / 2, 2 * 3.14159265358979, 0.5);
+  o.turnRate = 0;
+  const auto straight = runWalk(o);
+  ASSERT_FALSE(straight.fell);
+  EXPECT_NEAR(turning.meanSpeed, straight.meanSpeed, 0.05 * straight.meanSpeed);
+}
+
 namespace {
 
 // The mean speed of `character`'s preset at goal `speed` for `seconds`, with `edit` made to every

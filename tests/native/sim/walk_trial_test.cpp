@@ -599,7 +599,7 @@ TEST(Turning, TheCanterTurnsNearItsGoalWithItsHeadingNearItsPathAndItsFeetOutsid
     }
   }
   // Without the bound on the heading's lead it falls: over a minute from 8 start phases each way,
-  // 11 of 16 (the shipped gait, none).
+  // 10 of 16 (the shipped gait, none).
   for (const double turn : {0.3, -0.3})
     for (int i = 0; i < 8; ++i) unboundedFalls += walk(unbounded, turn, (i + 0.5) / 8, nullptr, 60).fell ? 1 : 0;
   EXPECT_GE(unboundedFalls, 6);

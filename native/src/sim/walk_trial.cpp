@@ -102,8 +102,7 @@ WalkResult runWalk(const WalkOptions& o) {
   const auto rootState = [&] { return sim.character(0).segmentState(root); };
   const Eigen::Vector3d start = rootState().position;
   const double startHeading = gait::headingOf(rootState().orientation);
-  Eigen::Vector3d halfPos = start;
-  // The second half's path, summed over pieces of kPathPieceSteps (mean speed, below).
+  // The second half's path, summed over pieces of kPathPieceSteps from the half (mean speed, below).
   Eigen::Vector3d piecePos = start;
   double pieceUnwrapped = 0, pathLength = 0;
   Eigen::Vector3d driftStart = start;  // where the drift window began (the start until then)
@@ -160,7 +159,6 @@ WalkResult runWalk(const WalkOptions& o) {
     unwrapped += gait::wrapAngle(h - lastHeading);
     lastHeading = h;
     if (step + 1 == half) {
-      halfPos = s.position;
       halfUnwrapped = unwrapped;
       piecePos = s.position;
       pieceUnwrapped = unwrapped;

@@ -579,7 +579,6 @@ TEST(Turning, TheCanterTurnsNearItsGoalWithItsHeadingNearItsPathAndItsFeetOutsid
   for (gaitlab::gait::SpeedKey& k : unbounded.keys) k.params.maxTurnSlip = gaitlab::gait::kNoTurnSlipBound;
   gaitlab::gait::Gait straightFeet = shipped;
   for (gaitlab::gait::SpeedKey& k : straightFeet.keys) k.params.turnPlacement = 0;
-  int unboundedFalls = 0;
   for (const double turn : {0.3, -0.3}) {
     for (const double phase : {0.0, 0.5}) {
       double excess = 0;
@@ -600,6 +599,7 @@ TEST(Turning, TheCanterTurnsNearItsGoalWithItsHeadingNearItsPathAndItsFeetOutsid
   }
   // Without the bound on the heading's lead it falls: over a minute from 8 start phases each way,
   // 10 of 16 (the shipped gait, none).
+  int unboundedFalls = 0;
   for (const double turn : {0.3, -0.3})
     for (int i = 0; i < 8; ++i) unboundedFalls += walk(unbounded, turn, (i + 0.5) / 8, nullptr, 60).fell ? 1 : 0;
   EXPECT_GE(unboundedFalls, 6);

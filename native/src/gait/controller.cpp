@@ -136,8 +136,17 @@ void Controller::blendAt(double speed, bool restart, bool atTransitionPhase) {
   if (change) {
     // Speed tracking's trim and mean error belong to the gait they were measured under: the
     // canter's trim, up to 1.45 m/s, asked the trot after it for 0.5 m/s more than its goal. The
-    // new gait starts its own from zero (controller-notes §50).
-    speedTrim_ = 0;
+    // new gait starts its own afresh (controller-notes §50): from zero, or, for a change made
+    // while the desired speed holds the goal (a steady goal, or one moving slower than
+    // maxAcceleration), from the body's lag behind it then, within the new key's bound. That
+    // lag is the new gait's to make up, and F_v then aims as far ahead of the goal as the body
+    // is behind it at once; the integral takes seconds (0.1 m/s per second at the canter's
+    // gain), and the canter entered on the walking benchmark's slow ramp ran 2.25 m/s at goals
+    // of 2.8–3.0 m/s meanwhile. A body ahead of its goal starts from zero: started below it,
+    // the walk after the trot on a slow ramp down ran 16 % slow (controller-notes §72).
+    const double lag = desiredVelocity_.z() - forwardSpeed_;
+    const bool holdsGoal = desiredVelocity_.z() == goal_.speed && goal_.speed > 0;
+    speedTrim_ = holdsGoal ? std::clamp(lag, 0.0, next.maxSpeedTrim) : 0.0;
     meanSpeedError_ = 0;
     player_.shiftPhase(transitionPhaseShift(params_.legs, next.legs, legs));
     ++gaitChanges_;
@@ -185,6 +194,7 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   if (getsUp(s, dt, torques)) return;  // fallen: getting up (gait/get_up.cpp) before it walks again
   Vector3d velocityH = worldToHeading(yaw, comVelocity);
   velocityH.y() = 0;
+  forwardSpeed_ = velocityH.z();
   desiredVelocity_ = rampDesiredVelocity(desiredVelocity_, Vector3d(0, 0, goal_.speed),
                                          params_.maxAcceleration, dt);
   // Speed keys (gait/speed_keys.h): the parameters follow the desired speed as it ramps, and the

@@ -192,6 +192,7 @@ class Controller {
   Eigen::Vector3d gravity_{0, -9.81, 0};
   double weight_ = 0;  // N, the whole character's
   Eigen::Vector3d com_ = Eigen::Vector3d::Zero();  // centre of mass this step (swing placement)
+  double forwardSpeed_ = 0;  // m/s, the centre of mass's forward speed this step (heading frame)
   double speedTrim_ = 0;  // m/s, speed tracking's correction of v_d in F_v (speedIntegralGain)
   double meanSpeedError_ = 0;   // m/s, v_d − v averaged over about a stride (speedProportionalGain)
   double speedCorrection_ = 0;  // m/s, the proportional term's correction of v_d in F_v

@@ -258,9 +258,9 @@ void Controller::update(double dt, const CharacterState& s, Vector3d* torques) {
   if (transitionPending_ && phaseReached(phaseBefore, player_.phase(), params_.transitionPhase))
     blendAt(std::abs(desiredVelocity_.z()), false, true);
   // The turn's heading bounded by this step's parameters, once the keys have been blended: the
-  // canter's first key, 0.06 m/s above the trot's last, tightens maxTurnSlip from 0.8 to 0.25 m/s
-  // within one step of a start from rest, and bounded before the blend the heading led the path
-  // by 0.1 rad more than the new bound for that step.
+  // quadruped's bridge key, 0.02 m/s above the trot's top key, tightens maxTurnSlip from 0.8 to
+  // 0.25 m/s within one step of a start from rest, and bounded before the blend the heading led
+  // the path by 0.1 rad more than the new bound for that step.
   boundTurnLead(comVelocity);
   // P0 of a leg whose first swing starts without a lift-off event: where its foot is now.
   if (!started_) {

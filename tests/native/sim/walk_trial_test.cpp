@@ -657,7 +657,9 @@ TEST(SpeedTracking, AChangeOfGaitAtAHeldGoalStartsTheTrimAtTheBodysLag) {
   o.seconds = 80;
   const auto ramp = runWalk(o);
   ASSERT_FALSE(ramp.fell);
-  EXPECT_GE(ramp.trackingWithin, 530) << "of " << ramp.trackingSamples;
+  // 510 with the trim started from zero; 540 with the trot's 2.7 m/s key integrating its error
+  // at half its speedIntegralGain, whose trim after the canter wound up too slowly (controller-notes §73): 549.
+  EXPECT_GE(ramp.trackingWithin, 545) << "of " << ramp.trackingSamples;
 }
 
 // Where the canter is left for the trot: where the gait phase reaches its keys' transitionPhase

@@ -657,8 +657,8 @@ TEST(SpeedTracking, AChangeOfGaitAtAHeldGoalStartsTheTrimAtTheBodysLag) {
   o.seconds = 80;
   const auto ramp = runWalk(o);
   ASSERT_FALSE(ramp.fell);
-  // 510 with the trim started from zero; 540 with the trot's 2.7 m/s key integrating its error
-  // at half its speedIntegralGain, whose trim after the canter wound up too slowly (controller-notes §73): 549.
+  // 549 as shipped; 540 with half the trot's 2.7 m/s key's speedIntegralGain, whose trim wound
+  // up too slowly after the canter (controller-notes §73); 510 with the trim started from zero.
   EXPECT_GE(ramp.trackingWithin, 545) << "of " << ramp.trackingSamples;
 }
 

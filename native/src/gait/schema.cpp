@@ -36,6 +36,7 @@ struct Entry {
 struct Table {
   std::vector<Entry> entries;
   std::vector<ParamSpec> specs;
+  std::vector<ParamRun> runs;
   int dimension = 0;
 };
 
@@ -238,6 +239,18 @@ Table build(Character c) {
   }
 
   for (const Entry& e : t.entries) t.specs.push_back(e.spec);
+  // The entries' doubles as runs, sorted by place and adjacent ones merged (paramRuns).
+  for (const Entry& e : t.entries)
+    t.runs.push_back({static_cast<int>(e.offset / static_cast<std::ptrdiff_t>(sizeof(double))), e.spec.knots});
+  std::sort(t.runs.begin(), t.runs.end(), [](const ParamRun& a, const ParamRun& b) { return a.first < b.first; });
+  std::vector<ParamRun> merged;
+  for (const ParamRun& r : t.runs) {
+    if (!merged.empty() && merged.back().first + merged.back().count == r.first)
+      merged.back().count += r.count;
+    else
+      merged.push_back(r);
+  }
+  t.runs = std::move(merged);
   return t;
 }
 
@@ -327,6 +340,8 @@ void forEachParam(Character c, GaitParams& params, const std::function<void(cons
 }
 
 const std::vector<ParamSpec>& paramSpecs(Character c) { return table(c).specs; }
+
+const std::vector<ParamRun>& paramRuns(Character c) { return table(c).runs; }
 
 int paramDimension(Character c) { return table(c).dimension; }
 

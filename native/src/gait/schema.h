@@ -96,6 +96,17 @@ void forEachParam(Character c, GaitParams& params, const std::function<void(cons
 // The specs alone, in schema order.
 const std::vector<ParamSpec>& paramSpecs(Character c);
 
+// Where a character's parameters lie in a GaitParams: runs of consecutive doubles, `first`
+// counted in doubles from the struct's start, in the order they lie there, adjacent fields merged
+// into one run. They hold exactly the doubles forEachParam visits. For loops over every
+// parameter that run in each control step, where a visitor call per field costs more than the
+// work: blending speed keys (gait/speed_keys.cpp) while the desired speed ramps.
+struct ParamRun {
+  int first;
+  int count;
+};
+const std::vector<ParamRun>& paramRuns(Character c);
+
 // Total number of doubles (knots counted) the character's parameters hold: the dimension of
 // the optimiser's search space.
 int paramDimension(Character c);

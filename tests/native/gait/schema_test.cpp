@@ -91,6 +91,26 @@ TEST_P(PerCharacter, EveryUsedFieldOfGaitParamsIsInTheSchemaExactlyOnce) {
   EXPECT_EQ(static_cast<int>(owner.size()), paramDimension(c));
 }
 
+// paramRuns is the schema's fields as runs of doubles, for the blend of speed keys: the same
+// slots forEachParam visits, each once, in order, and no two runs that could be one.
+TEST_P(PerCharacter, ParamRunsHoldExactlyTheVisitedSlotsMerged) {
+  const Character c = GetParam();
+  GaitParams p{};
+  std::set<int> visited;
+  forEachParam(c, p, [&](const ParamField& f) {
+    for (int k = 0; k < f.spec.knots; ++k) visited.insert(slotOf(p, f.values + k));
+  });
+  std::set<int> inRuns;
+  int end = -1;
+  for (const ParamRun& r : paramRuns(c)) {
+    EXPECT_GT(r.count, 0);
+    EXPECT_GT(r.first, end) << "runs out of order, overlapping or left unmerged at slot " << r.first;
+    for (int k = r.first; k < r.first + r.count; ++k) EXPECT_TRUE(inRuns.insert(k).second) << k;
+    end = r.first + r.count;
+  }
+  EXPECT_EQ(inRuns, visited);
+}
+
 TEST_P(PerCharacter, NamesAreUniqueAndEntriesWellFormed) {
   std::set<std::string> names;
   for (const ParamSpec& s : paramSpecs(GetParam())) {

@@ -72,8 +72,9 @@ void paramsAtSpeed(Character c, const Gait& gait, double speed, GaitParams* out)
   const double t = (s - a.speed) / (b.speed - a.speed);
   *out = a.params;
   // Every parameter the character uses, run by run (schema.h, paramRuns): this runs in each
-  // control step while the desired speed ramps, and a visitor call per field made the biped's
-  // controller a fifth dearer over the crowd benchmark's start (bench/cost.mjs).
+  // control step while the desired speed ramps, where a visitor call per field had cost the
+  // biped's controller 8 % more instructions per step over the crowd benchmark's start
+  // (docs/controller-notes.md §74, bench/cost.mjs).
   const double* x = reinterpret_cast<const double*>(&a.params);
   const double* y = reinterpret_cast<const double*>(&b.params);
   double* v = reinterpret_cast<double*>(out);

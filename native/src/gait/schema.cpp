@@ -239,18 +239,18 @@ Table build(Character c) {
   }
 
   for (const Entry& e : t.entries) t.specs.push_back(e.spec);
-  // The entries' doubles as runs, sorted by place and adjacent ones merged (paramRuns).
+  // The entries' doubles as runs, in the order they lie in GaitParams, adjacent ones merged
+  // (paramRuns).
+  std::vector<ParamRun> fields;
   for (const Entry& e : t.entries)
-    t.runs.push_back({static_cast<int>(e.offset / static_cast<std::ptrdiff_t>(sizeof(double))), e.spec.knots});
-  std::sort(t.runs.begin(), t.runs.end(), [](const ParamRun& a, const ParamRun& b) { return a.first < b.first; });
-  std::vector<ParamRun> merged;
-  for (const ParamRun& r : t.runs) {
-    if (!merged.empty() && merged.back().first + merged.back().count == r.first)
-      merged.back().count += r.count;
+    fields.push_back({static_cast<int>(e.offset / static_cast<std::ptrdiff_t>(sizeof(double))), e.spec.knots});
+  std::sort(fields.begin(), fields.end(), [](const ParamRun& a, const ParamRun& b) { return a.first < b.first; });
+  for (const ParamRun& r : fields) {
+    if (!t.runs.empty() && t.runs.back().first + t.runs.back().count == r.first)
+      t.runs.back().count += r.count;
     else
-      merged.push_back(r);
+      t.runs.push_back(r);
   }
-  t.runs = std::move(merged);
   return t;
 }
 

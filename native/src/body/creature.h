@@ -9,7 +9,7 @@
 //      "mass": kg, "aboveHips": m (its centre above its hips), "colour": "#rrggbb",
 //      "legs": {                              one pair, left (+x) and right (−x)
 //        "name" (prefix of the legs' names, may be ""), "hipSpacing": m (each hip from the midline),
-//        "hip": {"lower": [3 rad], "upper": [3 rad]},   flexion (about x), abduction, twist
+//        "hip": {"lower": [3 rad], "upper": [3 rad]},   swing about x (− forwards), twist (y), sideways (z)
 //        "knee": {"points": "forward" | "backward", "flexion": rad, "hyperextension": rad},
 //        "ankle": {"pitch": rad, "roll": rad},           symmetric ranges
 //        "upper": {"length": m, "halfThickness": m, "mass": kg}, "lower": {the same},

@@ -74,11 +74,17 @@ Character::Character(World& world, const body::Morphology& morphology,
                           world.dynamics().getSolverInfo().m_erp);
       g->setLinearLowerLimit(btVector3(0, 0, 0));
       g->setLinearUpperLimit(btVector3(0, 0, 0));
+      // btGeneric6DofSpring2Constraint's Euler angles (matrixToEulerXYZ) read its relative basis
+      // transposed: they are the parent's rotation relative to the child, the opposite sign of
+      // ours, as the hinge's are. So these limits are mirrored too (the three angles they bound
+      // are then those of Rz·Ry·Rx); read straight, a hip given 2.0 rad forwards and 0.7
+      // backwards swung 0.7 forwards and 2.0 backwards (JointRange test; docs/controller-notes.md,
+      // "The ball joints' ranges were mirrored").
       btVector3 lo(0, 0, 0), hi(0, 0, 0);  // DOFs the joint lacks stay locked
       for (int d = 0; d < body::dofCount(j.type); ++d) {
         const int a = axisIndex(j.axes[d]);
-        lo[a] = static_cast<btScalar>(j.lower[d]);
-        hi[a] = static_cast<btScalar>(j.upper[d]);
+        lo[a] = static_cast<btScalar>(-j.upper[d]);
+        hi[a] = static_cast<btScalar>(-j.lower[d]);
       }
       g->setAngularLowerLimit(lo);
       g->setAngularUpperLimit(hi);

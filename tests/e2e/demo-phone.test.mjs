@@ -1,5 +1,6 @@
 // End to end: the demo page on a phone, in Chromium's mobile emulation (390×844 CSS pixels,
-// touch events): the scene keeps most of the screen (the panel a drawer, the heads-up one line),
+// touch events): the scene keeps most of the screen (the panel a drawer, the heads-up one line)
+// and the crowd its height,
 // a tap throws, a tap on a character selects it and the editors open as a bottom sheet with the
 // character kept in view above it; one finger orbits, two fingers pinch to zoom.
 //
@@ -60,6 +61,14 @@ describe('the demo on a phone', { timeout: TEST_TIMEOUT * 2 }, () => {
     assert.ok(hud.height <= 26, `the heads-up line is one line (${hud.height} px)`);
     const share = await sceneShare(page);
     assert.ok(share >= 0.6, `the scene has ${(share * 100).toFixed(0)} % of the screen`);
+    // The crowd uses the screen's height, not only a band across its middle: on a tall screen the
+    // first view looks down steeply (render/stage.ts, frame). At the usual low view the six
+    // characters spread over 10 % of the height, at the steep one over 21 %.
+    const spread = await page.evaluate(() => {
+      const ys = window.gaitlab.characters().map((c) => window.gaitlab.screenPosition(c.id)).filter(Boolean).map((p) => p.y);
+      return (Math.max(...ys) - Math.min(...ys)) / innerHeight;
+    });
+    assert.ok(spread >= 0.15, `the crowd spreads over ${(spread * 100).toFixed(0)} % of the screen's height`);
     await page.screenshot({ path: path.join(resultsDir, 'phone.png') });
 
     // A tap on the ground, away from the characters: a box is thrown.

@@ -14,6 +14,9 @@ const GROUND = 0x9aa68c;
 const GROUND_SIZE = 400;
 /** Half-size of the square the sun's shadow map covers, around the camera target (metres). */
 const SHADOW_EXTENT = 12;
+/** Below this width / height the screen is tall, and the first view of the crowd looks down at TALL_ELEVATION (rad). */
+const TALL_ASPECT = 0.8;
+const TALL_ELEVATION = THREE.MathUtils.degToRad(42);
 
 export class Stage {
   readonly renderer: THREE.WebGLRenderer;
@@ -154,6 +157,13 @@ export class Stage {
   /** Points the camera at a region: `center` seen from a distance that fits `radius`. */
   frame(center: THREE.Vector3, radius: number): void {
     const direction = this.camera.position.clone().sub(this.controls.target).normalize();
+    // A tall screen (a phone held upright) fits the crowd by its width, which leaves most of its
+    // height to the sky and the foreground at the usual low view: it looks down more steeply
+    // instead, so that the ground around the crowd fills that height.
+    if (this.camera.aspect < TALL_ASPECT && direction.y < Math.sin(TALL_ELEVATION)) {
+      const level = Math.hypot(direction.x, direction.z);
+      direction.set((direction.x / level) * Math.cos(TALL_ELEVATION), Math.sin(TALL_ELEVATION), (direction.z / level) * Math.cos(TALL_ELEVATION));
+    }
     const fov = THREE.MathUtils.degToRad(this.camera.fov);
     const distance = Math.max(4, radius / Math.sin(fov / 2));
     this.controls.target.copy(center);

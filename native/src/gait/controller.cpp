@@ -441,6 +441,13 @@ void Controller::bodyStance(const CharacterState& s, double yaw, const Vector3d&
   }
   // F_v (eq. 3.6) on the whole body.
   force += velocityForce(kv, headingToWorld(yaw, trimmedVelocity()), comVelocity);
+  // Turning: the roll moment of the turn's sideways ground force about the centre of mass, left
+  // to the stance rather than cancelled (turnRollMoment, params.h). The force m v ω points to the
+  // turn's centre (left for ω > 0) from the ground h below the centre of mass, so its moment
+  // (−h·up) × (m v ω·left) = m v ω h·forward rolls the body out of the turn.
+  if (params_.turnRollMoment > 0 && goal_.turnRate != 0.0)
+    torque += params_.turnRollMoment * (weight_ / 9.81) * forwardSpeed_ * goal_.turnRate * comHeight(s) *
+              headingForward(yaw);
 
   Vector3d points[kMaxStanceFeet], forces[kMaxStanceFeet];
   int legOf[kMaxStanceFeet];

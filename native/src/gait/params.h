@@ -107,6 +107,14 @@ struct GaitParams {
   // up to the roll: the canter turned at a third of its goal (docs/controller-notes.md §60).
   // 0 (schemas before 11): feet placed as if going straight.
   double turnPlacement = 0.0;
+  // Turning, bodies of several leg frames (beyond the thesis): the whole-body stance's wanted
+  // torque (stance_forces.h) takes on turnRollMoment times m v ω h about the heading's forward
+  // axis, the roll moment the turn's sideways ground force (m v ω, towards the turn's centre)
+  // exerts about the centre of mass from the ground, h below it. Asked for none, the stance
+  // cancels that moment with the feet's vertical forces, which a canter on one or two feet near
+  // the midline cannot: it gave up sideways force instead, and turned at 0.23 rad/s when told
+  // 0.3 at 3.5 m/s (docs/controller-notes.md §77). 0 (schemas before 12): cancelled.
+  double turnRollMoment = 0.0;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the
   // one place every change was taken in schemas before 9. The quadruped's canter falls in the

@@ -187,6 +187,11 @@ void migrateParams(int version, json* params) {
     // going straight, as before).
     if (!params->contains("turnPlacement")) (*params)["turnPlacement"] = 0.0;
   }
+  if (version < 12) {
+    // 12: the roll moment of a turn's sideways force left to the stance, per key
+    // (turnRollMoment; 0 cancels it, as before).
+    if (!params->contains("turnRollMoment")) (*params)["turnRollMoment"] = 0.0;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

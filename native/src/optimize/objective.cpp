@@ -232,7 +232,7 @@ double episodeTurnRate(const ObjectiveSettings& settings, int start) {
 }
 
 std::vector<std::string> unmeasuredParameters(const ObjectiveSettings& settings) {
-  if (settings.turnRate == 0) return {"maxTurnSlip", "turnPlacement"};
+  if (settings.turnRate == 0) return {"maxTurnSlip", "turnPlacement", "turnRollMoment"};
   return {};
 }
 

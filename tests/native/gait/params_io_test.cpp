@@ -162,6 +162,7 @@ constexpr AddedField kAddedFields[] = {
     {9, "transitionPhase", 0.0},
     {10, "maxTurnSlip", 5.0},
     {11, "turnPlacement", 0.0},
+    {12, "turnRollMoment", 0.0},
 };
 
 // The preset of `c` as a file of schema `version` would have it: the fields later schemas added
@@ -231,6 +232,13 @@ TEST(GaitFile, AVersion10FileIsMigratedToFeetPlacedAsIfGoingStraight) {
   // they were placed as if going straight, which 0 reproduces, so a version-10 file loads with 0
   // in every key and nothing else moved.
   for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 10);
+}
+
+TEST(GaitFile, AVersion11FileIsMigratedToATurnsRollMomentCancelled) {
+  // Schema 12 left the roll moment of a turn's sideways force to the whole-body stance, per key
+  // (turnRollMoment); before it the stance cancelled it, which 0 reproduces, so a version-11 file
+  // loads with 0 in every key and nothing else moved.
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 11);
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

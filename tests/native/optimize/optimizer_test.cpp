@@ -755,6 +755,7 @@ TEST(OptimizeSearch, TheTurnsParametersAreHeldUnlessTheEpisodesTurn) {
   gait::GaitParams start = detunedBiped();
   start.maxTurnSlip = 1.0;  // inside their bounds, where a move is not clamped away
   start.turnPlacement = 0.5;
+  start.turnRollMoment = 1.0;
   for (const double turn : {0.0, 0.5}) {
     SCOPED_TRACE(turn);
     SearchOptions o = quickSearch(Method::CmaEs, 2);
@@ -769,9 +770,10 @@ TEST(OptimizeSearch, TheTurnsParametersAreHeldUnlessTheEpisodesTurn) {
     const bool held = turn == 0;
     EXPECT_EQ(best.maxTurnSlip == start.maxTurnSlip, held) << best.maxTurnSlip;
     EXPECT_EQ(best.turnPlacement == start.turnPlacement, held) << best.turnPlacement;
+    EXPECT_EQ(best.turnRollMoment == start.turnRollMoment, held) << best.turnRollMoment;
     EXPECT_NE(best.period, start.period);
   }
-  EXPECT_TRUE(unmeasuredParameters(ObjectiveSettings{}).size() == 2u);
+  EXPECT_TRUE(unmeasuredParameters(ObjectiveSettings{}).size() == 3u);
 }
 
 TEST(OptimizeSearch, HeldNamesAreParametersOrFieldsAndOthersAreRefused) {

@@ -162,6 +162,14 @@ bool readLegs(Reader& r, const json& v, const std::string& path, int version, Le
     return false;
   for (size_t i = 0; i < 3; ++i)
     if (out->hipLower[i] > out->hipUpper[i]) return r.fail(at(join(hip, "lower"), i), "above hip.upper[" + std::to_string(i) + "]");
+  // Before version 3 the physics mirrored the hip's range (creature.h): read so, a file walks as
+  // it did when it was written. A symmetric range is the same either way.
+  if (version < 3)
+    for (size_t i = 0; i < 3; ++i) {
+      const double lower = out->hipLower[i];
+      out->hipLower[i] = -out->hipUpper[i];
+      out->hipUpper[i] = -lower;
+    }
   const std::string knee = join(path, "knee");
   if (!r.fields(v["knee"], knee, {"points", "flexion", "hyperextension"})) return false;
   const json& points = v["knee"]["points"];

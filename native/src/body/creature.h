@@ -3,7 +3,7 @@
 // that a character's body, like its gait, is data. The thesis (Larsson 2015, §7.5) ends with
 // creatures of any leg count designed by their players; this is the format they are written in.
 //
-//   {"format": "gaitlab-creature", "version": 1 or 2, "name": "...", "armature": kg·m²,
+//   {"format": "gaitlab-creature", "version": 1, 2 or 3, "name": "...", "armature": kg·m²,
 //    "legFrames": [{                          front to back, 1 to 4
 //      "name", "z": m (its centre, forward of the body's middle), "halfExtents": [x, y, z] m,
 //      "mass": kg, "aboveHips": m (its centre above its hips), "colour": "#rrggbb",
@@ -24,7 +24,10 @@
 //
 // A leg has two segments (upper, lower) or, with a "tarsus" (version 2), three: as a dog's hind
 // leg (femur, tibia, metatarsus) or a bird's, whose hock, between lower and tarsus, bends the other
-// way to the knee. Version 1 is version 2 without the tarsus; both are read.
+// way to the knee. Version 1 is version 2 without the tarsus; both are read. Version 3 reads the
+// hip's range as it is written; files of versions 1 and 2 were simulated with it mirrored (the
+// physics read every ball joint's range the wrong way round, docs/controller-notes.md §76), so
+// they are read mirrored, lower = −upper and upper = −lower, and walk as they did.
 //
 // Legs hang straight down from their hips at rest: a leg frame's hips sit at the height its legs
 // reach, 2·foot half height + ankleAboveFoot + tarsus + lower + upper, and its centre `aboveHips` higher. Spine
@@ -43,7 +46,7 @@
 namespace gaitlab::body {
 
 constexpr const char* kCreatureFormat = "gaitlab-creature";
-constexpr int kCreatureFormatVersion = 2;
+constexpr int kCreatureFormatVersion = 3;
 constexpr int kMaxCreatureLegFrames = 4;
 
 // Why a creature file was refused: `field` the offending key as a path ("legFrames[1].legs.upper

@@ -370,12 +370,44 @@ TEST(Creature, TheDerivedGaitIsAGaitFileOfItsKind) {
   }
 }
 
+// Files of versions 1 and 2 were simulated with every ball joint's range mirrored (physics/
+// character.cpp, docs/controller-notes.md §76): they are read mirrored, and walk as they did.
+// The shipped biped, written as version 3 with the range its gaits were tuned on, is the same
+// body as its version-2 image with the range as it was written then.
+TEST(Creature, AFileOfVersionTwoIsReadWithItsHipRangeMirrored) {
+  json now = json::parse(readText("public/creatures/biped.json"));
+  ASSERT_EQ(now["version"], 3);
+  json before = now;
+  before["version"] = 2;
+  json& hip = before["legFrames"][0]["legs"]["hip"];
+  for (int i = 0; i < 3; ++i) {
+    const double lower = now["legFrames"][0]["legs"]["hip"]["lower"][i];
+    hip["lower"][i] = -now["legFrames"][0]["legs"]["hip"]["upper"][i].get<double>();
+    hip["upper"][i] = -lower;
+  }
+  ASSERT_EQ(hip["lower"][0], -2.0) << "the biped's file said 2.0 rad forwards";
+  Morphology fromNow, fromBefore;
+  ASSERT_FALSE(parseCreatureFile(now.dump(), &fromNow));
+  ASSERT_FALSE(parseCreatureFile(before.dump(), &fromBefore));
+  for (size_t i = 0; i < fromNow.segments.size(); ++i) {
+    EXPECT_EQ(fromNow.segments[i].joint.lower, fromBefore.segments[i].joint.lower) << fromNow.segments[i].name;
+    EXPECT_EQ(fromNow.segments[i].joint.upper, fromBefore.segments[i].joint.upper) << fromNow.segments[i].name;
+  }
+  // A symmetric range (the quadruped's) reads the same in every version.
+  Morphology v1, v3;
+  json quadruped = shippedQuadruped();
+  ASSERT_FALSE(parseCreatureFile(quadruped.dump(), &v1));
+  quadruped["version"] = 3;
+  ASSERT_FALSE(parseCreatureFile(quadruped.dump(), &v3));
+  for (size_t i = 0; i < v1.segments.size(); ++i) EXPECT_EQ(v1.segments[i].joint.lower, v3.segments[i].joint.lower);
+}
+
 TEST(Creature, ABadFileIsRefusedWithTheFieldNamed) {
   EXPECT_EQ(refusal([](json& d) { d["legs"] = 4; }), "legs: unknown field");
   EXPECT_EQ(refusal([](json& d) { d.erase("armature"); }), "armature: missing");
   EXPECT_EQ(refusal([](json& d) { d["format"] = "gaitlab-gait"; }),
             "format: expected \"gaitlab-creature\", got \"gaitlab-gait\"");
-  EXPECT_EQ(refusal([](json& d) { d["version"] = 3; }), "version: expected a whole number from 1 to 2, got 3");
+  EXPECT_EQ(refusal([](json& d) { d["version"] = 4; }), "version: expected a whole number from 1 to 3, got 4");
   // A third leg segment is a version 2 field, with its hock's range.
   const json tarsus = {{"length", 0.1}, {"halfThickness", 0.02}, {"mass", 0.2}, {"hock", {{"flexion", 2.4}, {"hyperextension", 0.05}}}};
   EXPECT_EQ(refusal([&](json& d) { d["legFrames"][1]["legs"]["tarsus"] = tarsus; }),

@@ -97,7 +97,7 @@ describe('creature designs', () => {
       const { file, problems } = designCreature({ ...DEFAULT_DESIGN, pairs, ...(pairs === 1 ? { upperLength: 0.42, lowerLength: 0.42, frameMass: 36, bodyWidth: 0.34, bodyHeight: 0.56 } : {}) });
       expect(problems, `${pairs} pairs`).toEqual([]);
       expect(file.format).toBe('gaitlab-creature');
-      expect(file.version).toBe(2);
+      expect(file.version).toBe(3);
       expect(file.legFrames).toHaveLength(pairs);
       expectReadable(file);
       // Centred on the body's middle.
@@ -130,7 +130,7 @@ describe('legs of three segments', () => {
   it('get a tarsus with its hock, sharing the lower leg\'s mass by length; without one, none', () => {
     const file = buildFile({ ...DEFAULT_DESIGN, upperLength: 0.2, lowerLength: 0.15, tarsusLength: 0.1 });
     const legs = file.legFrames[1].legs;
-    expect(file.version).toBe(2);
+    expect(file.version).toBe(3);
     expect(legs.tarsus).toBeDefined();
     expect(legs.tarsus!.length).toBe(0.1);
     expect(legs.tarsus!.hock).toEqual({ flexion: 2.4, hyperextension: 0.05 });

@@ -1,10 +1,13 @@
-// Creature files as the page writes them: the "gaitlab-creature" format, version 2, whose one
+// Creature files as the page writes them: the "gaitlab-creature" format, version 3, whose one
 // reader and every range live in native/src/body/creature.h (docs/creatures.md). These types only
 // name its fields for TypeScript; the module judges a file, and refuses it with the field named.
 
 export const CREATURE_FORMAT = 'gaitlab-creature';
-/** The version the page writes; version 1 is version 2 without legs of three segments (both are read). */
-export const CREATURE_FORMAT_VERSION = 2;
+/**
+ * The version the page writes. Version 1 is version 2 without legs of three segments; both are
+ * read, their hip ranges mirrored, as the physics simulated them (body/creature.h).
+ */
+export const CREATURE_FORMAT_VERSION = 3;
 /** Most leg frames a body may have (kMaxCreatureLegFrames, body/creature.h). */
 export const MAX_LEG_FRAMES = 4;
 
@@ -69,7 +72,7 @@ export interface SpineSection {
 
 export interface CreatureFile {
   format: typeof CREATURE_FORMAT;
-  version: 1 | typeof CREATURE_FORMAT_VERSION;
+  version: 1 | 2 | typeof CREATURE_FORMAT_VERSION;
   name: string;
   /** kg·m² */
   armature: number;

@@ -113,7 +113,8 @@ struct GaitParams {
   // exerts about the centre of mass from the ground, h below it. Asked for none, the stance
   // cancels that moment with the feet's vertical forces, which a canter on one or two feet near
   // the midline cannot: it gave up sideways force instead, and turned at 0.23 rad/s when told
-  // 0.3 at 3.5 m/s (docs/controller-notes.md §77). 0 (schemas before 12): cancelled.
+  // 0.3 at 3.5 m/s (docs/controller-notes.md §77). 0 (schemas before 12): cancelled. Not in the
+  // schema of bodies of one leg frame (from 13), whose stance has no such fit.
   double turnRollMoment = 0.0;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the

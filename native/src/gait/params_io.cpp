@@ -124,10 +124,10 @@ std::optional<ParamsError> parseJson(const std::string& text, json* out) {
   return std::nullopt;
 }
 
-// Brings the parameters of a file made against schema `version` up to kSchemaVersion, one
-// version at a time. The only migrations there are: the web page and the CLI both read gait
+// Brings the parameters of a file for `c` made against schema `version` up to kSchemaVersion,
+// one version at a time. The only migrations there are: the web page and the CLI both read gait
 // files through parseGaitFile.
-void migrateParams(int version, json* params) {
+void migrateParams(Character c, int version, json* params) {
   if (version < 2) {
     // 2: the quadruped's whole-body stance replaced the per-leg-frame support gain, and the swing
     // PDs may follow their targets' velocity (gains.swingTargetRate; 0 is the old behaviour).
@@ -192,6 +192,11 @@ void migrateParams(int version, json* params) {
     // (turnRollMoment; 0 cancels it, as before).
     if (!params->contains("turnRollMoment")) (*params)["turnRollMoment"] = 0.0;
   }
+  if (version < 13 && c == Character::Biped) {
+    // 13: turnRollMoment only where it acts, in the whole-body stance of several leg frames; a
+    // body of one leg frame was given it by 12 and never read it, so dropping it changes nothing.
+    params->erase("turnRollMoment");
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.
@@ -222,7 +227,7 @@ std::optional<ParamsError> readParams(Character c, const json& given, int versio
   const std::string self = prefix.empty() ? "params" : prefix.substr(0, prefix.size() - 1);
   if (!given.is_object()) return ParamsError{self, "expected an object, got " + typeName(given)};
   json pj = given;
-  migrateParams(version, &pj);
+  migrateParams(c, version, &pj);
   GaitParams copy = *params;
   std::optional<ParamsError> error;
   std::set<std::string> known;

@@ -109,12 +109,13 @@ Table build(Character c) {
          "offset at which the ground force that turns the body passes through its centre of mass "
          "(h: its height, v: its speed, ω: the turn rate); 0: placed as if going straight",
          proto.turnPlacement);
-  scalar("turnRollMoment", kLegFrame, {0, 4}, "1",
-         "turning, bodies of several leg frames: the whole-body stance is asked for this many "
-         "times the roll moment m·v·ω·h that the turn's sideways ground force exerts about the "
-         "centre of mass from the ground, instead of cancelling it with its feet (h: the centre of "
-         "mass's height); 0: cancelled",
-         proto.turnRollMoment);
+  if (!biped) {  // the whole-body stance it acts in is that of bodies of several leg frames
+    scalar("turnRollMoment", kLegFrame, {0, 4}, "1",
+           "turning: the whole-body stance is asked for this many times the roll moment m·v·ω·h "
+           "that the turn's sideways ground force exerts about the centre of mass from the ground, "
+           "instead of cancelling it with its feet (h: the centre of mass's height); 0: cancelled",
+           proto.turnRollMoment);
+  }
 
   // ---- joint gains (§3.1.7), shared by all legs ----
   JointGains& g = proto.gains;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gait/heading.h"
+#include "gait/schema.h"
 #include "optimize/random.h"
 #include "sim/box_hits.h"
 #include "sim/walk_trial.h"
@@ -231,9 +232,12 @@ double episodeTurnRate(const ObjectiveSettings& settings, int start) {
   return settings.turnBothWays > 0 && start % 2 == 1 ? -settings.turnRate : settings.turnRate;
 }
 
-std::vector<std::string> unmeasuredParameters(const ObjectiveSettings& settings) {
-  if (settings.turnRate == 0) return {"maxTurnSlip", "turnPlacement", "turnRollMoment"};
-  return {};
+std::vector<std::string> unmeasuredParameters(gait::Character c, const ObjectiveSettings& settings) {
+  std::vector<std::string> names;
+  if (settings.turnRate != 0) return names;
+  for (const char* name : {"maxTurnSlip", "turnPlacement", "turnRollMoment"})
+    if (gait::findParam(c, name)) names.push_back(name);
+  return names;
 }
 
 std::vector<std::pair<double, double>> speedChangeSchedule(double lo, double hi, int index, uint32_t seed) {

@@ -137,10 +137,11 @@ double episodeTurnRate(const ObjectiveSettings& settings, int start);
 // Parameters that no episode of these settings can measure, which a search therefore leaves as
 // they start (optimize/optimizer.h, beside SearchOptions::held): without a goal turn rate, the
 // turn's maxTurnSlip, turnPlacement and turnRollMoment (gait/params.h), which act only while the
-// goal turns. Left free, CMA-ES moves them as far as its other coordinates, with nothing to pull
-// them back: searches of the quadruped's canter keys for speed took one key's maxTurnSlip to its
-// lower bound, and that key then turned at half the told rate (docs/controller-notes.md §66).
-std::vector<std::string> unmeasuredParameters(const ObjectiveSettings& settings);
+// goal turns, those of them that `c`'s schema has. Left free, CMA-ES moves them as far as its
+// other coordinates, with nothing to pull them back: searches of the quadruped's canter keys for
+// speed took one key's maxTurnSlip to its lower bound, and that key then turned at half the told
+// rate (docs/controller-notes.md §66).
+std::vector<std::string> unmeasuredParameters(gait::Character c, const ObjectiveSettings& settings);
 
 // Goals held in one speed-change episode (the walking benchmark's gait-change trial holds 9).
 constexpr int kSpeedChangeHolds = 9;

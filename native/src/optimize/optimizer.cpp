@@ -70,7 +70,7 @@ Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start
   gait::clampToBounds(options.character, &bestVector_);
   // Held: what the caller holds, and what the episodes cannot measure (unmeasuredParameters).
   std::vector<std::string> held = options.held;
-  for (const std::string& name : unmeasuredParameters(options.objective)) held.push_back(name);
+  for (const std::string& name : unmeasuredParameters(options.character, options.objective)) held.push_back(name);
   if (!heldCoordinates(options.character, held, &held_).empty()) held_.assign(bestVector_.size(), false);
 }
 

@@ -149,11 +149,13 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
 namespace {
 
 // Every field a schema from 6 on added to each key, with the value its migration gives files
-// older than it: the value that walks as those files did.
+// older than it: the value that walks as those files did. (turnRollMoment, added by 12, is in
+// the quadruped's schema only from 13: biped files of 12 had it, with no effect.)
 struct AddedField {
   int schema;
   const char* name;
   double value;
+  bool quadrupedOnly = false;
 };
 constexpr AddedField kAddedFields[] = {
     {6, "standSpeed", 0.0},
@@ -162,7 +164,7 @@ constexpr AddedField kAddedFields[] = {
     {9, "transitionPhase", 0.0},
     {10, "maxTurnSlip", 5.0},
     {11, "turnPlacement", 0.0},
-    {12, "turnRollMoment", 0.0},
+    {12, "turnRollMoment", 0.0, true},
 };
 
 // The preset of `c` as a file of schema `version` would have it: the fields later schemas added
@@ -174,8 +176,8 @@ void expectMigrated(Character c, int version) {
   ASSERT_TRUE(current.contains("keys"));
   json old = current;
   old["version"] = version;
-  for (const auto& [schema, name, value] : kAddedFields) {
-    if (schema <= version) continue;
+  for (const auto& [schema, name, value, quadrupedOnly] : kAddedFields) {
+    if (schema <= version || (quadrupedOnly && c != Character::Quadruped)) continue;
     old["params"].erase(name);
     current["params"][name] = value;
     for (json& key : old["keys"]) key["params"].erase(name);
@@ -239,6 +241,28 @@ TEST(GaitFile, AVersion11FileIsMigratedToATurnsRollMomentCancelled) {
   // (turnRollMoment); before it the stance cancelled it, which 0 reproduces, so a version-11 file
   // loads with 0 in every key and nothing else moved.
   for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 11);
+}
+
+TEST(GaitFile, AVersion12BipedFileIsReadWithoutTheRollMomentItNeverUsed) {
+  // Schema 13 keeps turnRollMoment to the bodies of several leg frames, whose whole-body stance
+  // it acts in. A biped file of 12 has it in every key, at whatever value an editor left it: it
+  // loads as the preset, bit for bit, and a file of 13 that still names it is refused.
+  json current = json::parse(presetText(Character::Biped));
+  ASSERT_FALSE(current["params"].contains("turnRollMoment"));
+  json old = current;
+  old["version"] = 12;
+  old["params"]["turnRollMoment"] = 1.5;
+  for (json& key : old["keys"]) key["params"]["turnRollMoment"] = 0.0;
+  GaitFile migrated, expected;
+  ASSERT_FALSE(parseGaitFile(old.dump(), Character::Biped, &migrated));
+  ASSERT_FALSE(parseGaitFile(current.dump(), Character::Biped, &expected));
+  ASSERT_EQ(migrated.gait.keys.size(), expected.gait.keys.size());
+  for (size_t k = 0; k < migrated.gait.keys.size(); ++k)
+    EXPECT_TRUE(sameBits(migrated.gait.keys[k].params, expected.gait.keys[k].params)) << "key " << k;
+  old["version"] = 13;
+  const auto error = parseGaitFile(old.dump(), Character::Biped, &migrated);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->describe(), "turnRollMoment: unknown parameter for a biped");
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

@@ -41,9 +41,10 @@ std::set<int> unusedSlots(Character c) {
   const int frames = biped ? 1 : 2, legs = 2 * frames;
   range(&p.legFrames[frames], (kMaxLegFrames - frames) * sizeof(LegFrameParams));
   range(&p.legs[legs], (kMaxLegs - legs) * sizeof(LegParams));
-  if (biped) {
+  if (biped) {  // no spine, and no whole-body stance for a turn's roll moment
     range(&p.gains.spineKp, sizeof(double));
     range(&p.gains.spineKd, sizeof(double));
+    range(&p.turnRollMoment, sizeof(double));
   }
   return unused;
 }

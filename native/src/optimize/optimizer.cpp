@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace gaitlab::optimize {
 
@@ -71,7 +72,10 @@ Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start
   // Held: what the caller holds, and what the episodes cannot measure (unmeasuredParameters).
   std::vector<std::string> held = options.held;
   for (const std::string& name : unmeasuredParameters(options.character, options.objective)) held.push_back(name);
-  if (!heldCoordinates(options.character, held, &held_).empty()) held_.assign(bestVector_.size(), false);
+  // A name that is not a parameter is the caller's mistake (the CLI checks --hold first): a
+  // search that went on would quietly move what it was asked to keep.
+  const std::string error = heldCoordinates(options.character, held, &held_);
+  if (!error.empty()) throw std::invalid_argument(error);
 }
 
 ObjectiveTerms Optimizer::score(const gait::GaitParams& params) const {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "gait/defaults.h"
 #include "gait/heading.h"
@@ -792,6 +793,16 @@ TEST(OptimizeSearch, HeldNamesAreParametersOrFieldsAndOthersAreRefused) {
   const std::string error = heldCoordinates(gait::Character::Biped, {"period", "frontLeft.stepTrigger"}, &mask);
   EXPECT_NE(error.find("'frontLeft.stepTrigger' is not a parameter of the biped"), std::string::npos) << error;
   EXPECT_EQ(std::count(mask.begin(), mask.end(), true), gait::MotionGraph::kKnots + 1) << "unchanged on a refusal";
+}
+
+// A search told to hold a name its character lacks is refused, rather than run with nothing held.
+TEST(OptimizeSearch, ASearchHoldingANameThatIsNotAParameterIsRefused) {
+  SearchOptions o;
+  o.character = gait::Character::Biped;
+  o.held = {"period", "frontLeft.stepTrigger"};
+  EXPECT_THROW(Optimizer::create(o, gait::defaultParams(o.character)), std::invalid_argument);
+  o.held = {"period"};
+  EXPECT_NO_THROW(Optimizer::create(o, gait::defaultParams(o.character)));
 }
 
 TEST(OptimizeSearch, TheTunedKeyIsTheOneTheGoalSpeedsWalkWithMost) {

@@ -115,7 +115,7 @@ describe('gl_gait_normalize: the gait in a share link or an imported file', () =
   });
 
   it('refuses a schema version newer than its own, and migrates a schema-1 gait to the current schema', () => {
-    assert.match(normalize(edited((g) => (g.version = 14))).error, /^version: expected 1 to 13, got 14/);
+    assert.match(normalize(edited((g) => (g.version = 15))).error, /^version: expected 1 to 14, got 15/);
     const current = preset(KIND.biped);
     const old = edited((g) => {
       g.version = 1;

@@ -74,6 +74,10 @@ class Controller {
   bool standing() const { return stand_ == Stand::Planted; }
   // Down after a fall and getting up (gait/get_up.cpp): the gait waits until it is on its feet.
   bool down() const { return stand_ == Stand::Down; }
+  // Where the body's hips are to stop a thigh's forward swing (rad; GaitParams::hipForwardStop,
+  // set on the physics by physics::Character::setHipForwardStop): the gait's stop, released while
+  // it gets up, which folds the legs as far as the body lets them.
+  double hipForwardStop() const { return down() ? kNoHipForwardStop : params_.hipForwardStop; }
 
  private:
   struct LegGeometry {

@@ -65,6 +65,8 @@ struct JointGains {
 
 // maxTurnSlip at or above this bounds nothing: no character is given a goal faster than 5 m/s.
 constexpr double kNoTurnSlipBound = 5.0;
+// hipForwardStop at this holds nothing: no hip swings a thigh forwards by π.
+constexpr double kNoHipForwardStop = 3.14159265358979323846;
 
 struct GaitParams {
   double period = 1;        // T, seconds (§3.1.1)
@@ -116,6 +118,14 @@ struct GaitParams {
   // 0.3 at 3.5 m/s (docs/controller-notes.md §77). 0 (schemas before 12): cancelled. Not in the
   // schema of bodies of one leg frame (from 13), whose stance has no such fit.
   double turnRollMoment = 0.0;
+  // The walking controller's forward stop at the hip, bodies of one leg frame (beyond the thesis):
+  // while it walks or stands, a thigh swung forwards of the leg frame's down axis by more than
+  // this (rad) is held back by a stiff one-sided spring (Controller::holdHipStops), as a joint's
+  // end stop would hold it. The biped's gaits were searched on a hip that stopped at 0.7 rad and
+  // press their swing thighs onto that stop; its body now flexes 2 rad, as a person's does, so
+  // that getting up can fold it, and the gaits keep their stop here (docs/controller-notes.md
+  // §76, §78). Files before 14 were all tuned on it and read 0.7. kNoHipForwardStop: none.
+  double hipForwardStop = kNoHipForwardStop;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the
   // one place every change was taken in schemas before 9. The quadruped's canter falls in the

@@ -197,6 +197,11 @@ void migrateParams(Character c, int version, json* params) {
     // body of one leg frame was given it by 12 and never read it, so dropping it changes nothing.
     params->erase("turnRollMoment");
   }
+  if (version < 14 && c == Character::Biped) {
+    // 14: the body of one leg frame flexes its hips 2 rad; its gaits, all searched on a hip that
+    // stopped at 0.7 rad, keep that stop as the walking controller's (hipForwardStop).
+    if (!params->contains("hipForwardStop")) (*params)["hipForwardStop"] = 0.7;
+  }
 }
 
 // A key's speed: a finite number of m/s within the goal speeds a character may be given.

@@ -109,6 +109,13 @@ Table build(Character c) {
          "offset at which the ground force that turns the body passes through its centre of mass "
          "(h: its height, v: its speed, ω: the turn rate); 0: placed as if going straight",
          proto.turnPlacement);
+  if (biped) {  // a thigh's forward swing; the quadruped's legs fold both ways
+    scalar("hipForwardStop", kJointGains, {0.3, kNoHipForwardStop}, "rad",
+           "the walking controller holds each thigh from swinging forwards of the leg frame's down "
+           "axis beyond this, with a stiff one-sided spring, as a joint's end stop would; beyond "
+           "the hip's range (π): no stop",
+           proto.hipForwardStop);
+  }
   if (!biped) {  // the whole-body stance it acts in is that of bodies of several leg frames
     scalar("turnRollMoment", kLegFrame, {0, 4}, "1",
            "turning: the whole-body stance is asked for this many times the roll moment m·v·ω·h "

@@ -129,6 +129,6 @@ std::string schemaJson(std::optional<Character> only = std::nullopt);
 
 // The kinds of more than two leg frames came without a new version: they add files no older
 // reader had, and change none it had.
-constexpr int kSchemaVersion = 13;
+constexpr int kSchemaVersion = 14;
 
 }  // namespace gaitlab::gait

@@ -44,6 +44,7 @@ Character::Character(World& world, const body::Morphology& morphology,
     bodies_.push_back(b);
   }
 
+  joints_.assign(morphology.segments.size(), nullptr);
   for (size_t i = 0; i < morphology.segments.size(); ++i) {
     const body::Segment& s = morphology.segments[i];
     if (s.parent < 0) continue;
@@ -94,12 +95,13 @@ Character::Character(World& world, const body::Morphology& morphology,
     // segments apart (world.h, kCharacterMask). Bullet's own switch for it (true here) would give
     // each segment a list of its neighbours, searched for every contact pair in every sub-step.
     world.dynamics().addConstraint(c, false);
-    joints_.push_back(c);
+    joints_[i] = c;
   }
 }
 
 Character::~Character() {
   for (btTypedConstraint* c : joints_) {
+    if (!c) continue;
     world_.dynamics().removeConstraint(c);
     delete c;
   }
@@ -128,6 +130,20 @@ void Character::applyJointTorques(const Eigen::Vector3d* torques) {
     const btVector3 t = toBt(torques[i]);
     bodies_[i]->applyTorque(t);
     bodies_[parent]->applyTorque(-t);
+  }
+}
+
+void Character::setHipForwardStop(double stop) {
+  for (const body::Leg& leg : morphology_.legs) {
+    const body::Joint& j = morphology_.segments[leg.upper].joint;
+    if (j.type == body::JointType::Hinge) continue;  // hips are ball joints (body/creature.h)
+    auto* hip = static_cast<Joint*>(joints_[leg.upper]);
+    // A forward swing turns about −x: the file's lower[0] bounds it, mirrored into the upper
+    // limit as the constructor mirrors it.
+    btVector3 upper;
+    hip->getAngularUpperLimit(upper);
+    upper[axisIndex(j.axes[0])] = static_cast<btScalar>(std::min(-j.lower[0], stop));
+    hip->setAngularUpperLimit(upper);
   }
 }
 

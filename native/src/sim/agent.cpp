@@ -15,6 +15,7 @@ Agent::Agent(physics::World& w, const body::Morphology& m, const Eigen::Vector3d
   lastGood = body->segmentState(m.legFrames[0]).position;
   lastGoodHeading = heading;
   controller.setGait(gait::defaultGait(gait::characterOf(m)));
+  body->setHipForwardStop(hipStop = controller.hipForwardStop());  // before the first step
 }
 
 void Agent::control() {
@@ -33,6 +34,7 @@ void Agent::control() {
   controller.update(physics::kFixedStep, cs, torques.data());
   body->applyJointTorques(torques.data());
   if (controller.standing() != feetHeld) body->holdFeet(feetHeld = controller.standing());
+  if (controller.hipForwardStop() != hipStop) body->setHipForwardStop(hipStop = controller.hipForwardStop());
   ++updates;
 }
 

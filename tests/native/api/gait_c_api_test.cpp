@@ -46,7 +46,7 @@ TEST(GaitCApi, NormalizeGivesTheCurrentVersionOrTheFieldItRefuses) {
 
   const std::pair<std::string, std::string> refusals[] = {
       {"{\"format\": ", "not valid JSON"},
-      {R"({"format":"gaitlab-gait","version":14,"character":"biped","params":{}})", "version: expected 1 to 13, got 14"},
+      {R"({"format":"gaitlab-gait","version":15,"character":"biped","params":{}})", "version: expected 1 to 14, got 15"},
       {R"({"format":"gaitlab-gait","version":2,"character":"octopus","params":{}})", "character: expected \"biped\" or \"quadruped\" or \"hexapod\" or \"octopod\", got \"octopus\""},
       {R"({"format":"other","version":2,"character":"biped","params":{}})", "format: expected \"gaitlab-gait\", got \"other\""},
       {R"({"format":"gaitlab-gait","version":2,"character":"biped","params":[1,2]})", "params: expected an object, got an array of 2"},

@@ -372,8 +372,8 @@ TEST(Creature, TheDerivedGaitIsAGaitFileOfItsKind) {
 
 // Files of versions 1 and 2 were simulated with every ball joint's range mirrored (physics/
 // character.cpp, docs/controller-notes.md §76): they are read mirrored, and walk as they did.
-// The shipped biped, written as version 3 with the range its gaits were tuned on, is the same
-// body as its version-2 image with the range as it was written then.
+// The shipped biped, written as version 3, is the same body as its version-2 image, its range
+// written mirrored as the physics then read it.
 TEST(Creature, AFileOfVersionTwoIsReadWithItsHipRangeMirrored) {
   json now = json::parse(readText("public/creatures/biped.json"));
   ASSERT_EQ(now["version"], 3);
@@ -385,7 +385,7 @@ TEST(Creature, AFileOfVersionTwoIsReadWithItsHipRangeMirrored) {
     hip["lower"][i] = -now["legFrames"][0]["legs"]["hip"]["upper"][i].get<double>();
     hip["upper"][i] = -lower;
   }
-  ASSERT_EQ(hip["lower"][0], -2.0) << "the biped's file said 2.0 rad forwards";
+  ASSERT_EQ(hip["lower"][0], -0.7) << "a hip that flexes 2.0 rad, in a file of version 2";
   Morphology fromNow, fromBefore;
   ASSERT_FALSE(parseCreatureFile(now.dump(), &fromNow));
   ASSERT_FALSE(parseCreatureFile(before.dump(), &fromBefore));

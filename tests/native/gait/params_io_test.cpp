@@ -149,13 +149,15 @@ TEST(GaitFile, AVersion2FileIsMigrated) {
 namespace {
 
 // Every field a schema from 6 on added to each key, with the value its migration gives files
-// older than it: the value that walks as those files did. (turnRollMoment, added by 12, is in
-// the quadruped's schema only from 13: biped files of 12 had it, with no effect.)
+// older than it: the value that walks as those files did, and the characters whose schema has it.
+// (turnRollMoment, added by 12, is in the quadruped's schema only from 13: biped files of 12 had
+// it, with no effect.)
+enum class Of { Both, Biped, Quadruped };
 struct AddedField {
   int schema;
   const char* name;
   double value;
-  bool quadrupedOnly = false;
+  Of of = Of::Both;
 };
 constexpr AddedField kAddedFields[] = {
     {6, "standSpeed", 0.0},
@@ -164,7 +166,8 @@ constexpr AddedField kAddedFields[] = {
     {9, "transitionPhase", 0.0},
     {10, "maxTurnSlip", 5.0},
     {11, "turnPlacement", 0.0},
-    {12, "turnRollMoment", 0.0, true},
+    {12, "turnRollMoment", 0.0, Of::Quadruped},
+    {14, "hipForwardStop", 0.7, Of::Biped},
 };
 
 // The preset of `c` as a file of schema `version` would have it: the fields later schemas added
@@ -176,8 +179,9 @@ void expectMigrated(Character c, int version) {
   ASSERT_TRUE(current.contains("keys"));
   json old = current;
   old["version"] = version;
-  for (const auto& [schema, name, value, quadrupedOnly] : kAddedFields) {
-    if (schema <= version || (quadrupedOnly && c != Character::Quadruped)) continue;
+  for (const auto& [schema, name, value, of] : kAddedFields) {
+    const bool has = of == Of::Both || (of == Of::Biped) == (c == Character::Biped);
+    if (schema <= version || !has) continue;
     old["params"].erase(name);
     current["params"][name] = value;
     for (json& key : old["keys"]) key["params"].erase(name);
@@ -263,6 +267,13 @@ TEST(GaitFile, AVersion12BipedFileIsReadWithoutTheRollMomentItNeverUsed) {
   const auto error = parseGaitFile(old.dump(), Character::Biped, &migrated);
   ASSERT_TRUE(error);
   EXPECT_EQ(error->describe(), "turnRollMoment: unknown parameter for a biped");
+}
+
+TEST(GaitFile, AVersion13BipedFileKeepsTheHipStopItsGaitsWereSearchedOn) {
+  // Schema 14 gave the biped's body a hip that flexes 2 rad and its gaits the 0.7 rad stop they
+  // were all searched on, as the walking controller's (hipForwardStop): a biped file of 13 loads
+  // with 0.7 in every key and nothing else moved; a quadruped's file of 13 loads as it was.
+  for (Character c : {Character::Biped, Character::Quadruped}) expectMigrated(c, 13);
 }
 
 TEST(GaitFile, AVersion3FileIsMigrated) {

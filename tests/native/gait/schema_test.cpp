@@ -28,8 +28,8 @@ int slotOf(const GaitParams& p, const double* field) {
 }
 
 // Slots a character does not use: the leg frames and legs beyond its own (GaitParams has room for
-// the bodies of creature files, up to kMaxLegFrames leg frames), and the biped's spine gains (it
-// has no spine).
+// the bodies of creature files, up to kMaxLegFrames leg frames), the biped's spine gains (it
+// has no spine) and the quadruped's hip stop.
 std::set<int> unusedSlots(Character c) {
   std::set<int> unused;
   GaitParams p;
@@ -45,6 +45,8 @@ std::set<int> unusedSlots(Character c) {
     range(&p.gains.spineKp, sizeof(double));
     range(&p.gains.spineKd, sizeof(double));
     range(&p.turnRollMoment, sizeof(double));
+  } else {  // a thigh's forward stop: the quadruped's legs fold both ways
+    range(&p.hipForwardStop, sizeof(double));
   }
   return unused;
 }

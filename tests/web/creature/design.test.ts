@@ -180,8 +180,8 @@ describe('joint ranges', () => {
     }
     const biped = designFromFile(shipped('biped'));
     const hips = buildFile({ ...biped, hipSwing: 1.5 }).legFrames[0].legs.hip;
-    expect(hips.lower[0]).toBeCloseTo(-0.875, 6);
-    expect(hips.upper[0]).toBeCloseTo(2.5, 6);
+    expect(hips.lower[0]).toBeCloseTo(-2.5, 6);
+    expect(hips.upper[0]).toBeCloseTo(0.875, 6);
     expect(designFromFile(buildFile({ ...biped, hipSwing: 1.5 })).hipSwing).toBeCloseTo(1.5, 6);
   });
 

@@ -133,7 +133,7 @@ const ARMATURE = 0.05;
  * the biped's, which its preset gait was tuned with. The swing scales the flexion (x) limits.
  */
 const HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-1.2, -0.3, -0.35], upper: [1.2, 0.3, 0.35] };
-const BIPED_HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-0.7, -0.6, -0.5], upper: [2.0, 0.6, 0.5] };
+const BIPED_HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-2.0, -0.6, -0.5], upper: [0.7, 0.6, 0.5] };
 /** The hip range a body of `pairs` leg pairs has at the shipped swing. */
 const shippedHipRange = (pairs: number) => (pairs === 1 ? BIPED_HIP_RANGE : HIP_RANGE);
 const KNEE_HYPEREXTENSION = 0.05;

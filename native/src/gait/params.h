@@ -118,13 +118,14 @@ struct GaitParams {
   // 0.3 at 3.5 m/s (docs/controller-notes.md §77). 0 (schemas before 12): cancelled. Not in the
   // schema of bodies of one leg frame (from 13), whose stance has no such fit.
   double turnRollMoment = 0.0;
-  // The walking controller's forward stop at the hip, bodies of one leg frame (beyond the thesis):
-  // while it walks or stands, a thigh swung forwards of the leg frame's down axis by more than
-  // this (rad) is held back by a stiff one-sided spring (Controller::holdHipStops), as a joint's
-  // end stop would hold it. The biped's gaits were searched on a hip that stopped at 0.7 rad and
-  // press their swing thighs onto that stop; its body now flexes 2 rad, as a person's does, so
-  // that getting up can fold it, and the gaits keep their stop here (docs/controller-notes.md
-  // §76, §78). Files before 14 were all tuned on it and read 0.7. kNoHipForwardStop: none.
+  // The gait's forward stop at the hip, bodies of one leg frame (beyond the thesis): while it
+  // walks or stands, the hip joint stops a thigh swinging forwards of the leg frame's down axis
+  // beyond this (rad), a limit of the joint as stiff as the body's own (sim::Agent sets it,
+  // physics::Character::setHipForwardStop; a get-up releases it). The biped's gaits were searched
+  // on a hip that stopped at 0.7 rad and press their swing thighs onto that stop; its body now
+  // flexes 2 rad, as a person's does, so that getting up can fold it, and the gaits keep their
+  // stop here (docs/controller-notes.md §76, §78). Files before 14 were all tuned on it and read
+  // 0.7. kNoHipForwardStop: none.
   double hipForwardStop = kNoHipForwardStop;
   // Where in this key's gait cycle a change to another footfall pattern is taken up: the gait
   // phase Φ, in cycles (gait/gait_transition.h; 1 is 0 again). 0 is where the cycle starts, the

@@ -111,9 +111,9 @@ Table build(Character c) {
          proto.turnPlacement);
   if (biped) {  // a thigh's forward swing; the quadruped's legs fold both ways
     scalar("hipForwardStop", kJointGains, {0.3, kNoHipForwardStop}, "rad",
-           "the walking controller holds each thigh from swinging forwards of the leg frame's down "
-           "axis beyond this, with a stiff one-sided spring, as a joint's end stop would; beyond "
-           "the hip's range (π): no stop",
+           "while it walks or stands, the hip joint stops each thigh swinging forwards of the leg "
+           "frame's down axis beyond this, as an end stop would (every biped gait was searched on "
+           "one at 0.7); beyond the hip's range (π): no stop",
            proto.hipForwardStop);
   }
   if (!biped) {  // the whole-body stance it acts in is that of bodies of several leg frames

@@ -130,7 +130,8 @@ export const DEFAULT_DESIGN: CreatureDesign = {
 const ARMATURE = 0.05;
 /**
  * The creatures' hip ranges at a swing of 1.2 rad (DEFAULT_DESIGN.hipSwing); a single pair takes
- * the biped's, which its preset gait was tuned with. The swing scales the flexion (x) limits.
+ * the biped's, a person's (its preset gait stops the forward swing at 0.7 rad itself, with its
+ * hipForwardStop). The swing scales the flexion (x) limits.
  */
 const HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-1.2, -0.3, -0.35], upper: [1.2, 0.3, 0.35] };
 const BIPED_HIP_RANGE: { lower: Triple; upper: Triple } = { lower: [-2.0, -0.6, -0.5], upper: [0.7, 0.6, 0.5] };

@@ -115,8 +115,7 @@ Table build(Character c) {
            "frame's down axis beyond this, as an end stop would (every biped gait was searched on "
            "one at 0.7); beyond the hip's range (π): no stop",
            proto.hipForwardStop);
-  }
-  if (!biped) {  // the whole-body stance it acts in is that of bodies of several leg frames
+  } else {  // the whole-body stance it acts in is that of bodies of several leg frames
     scalar("turnRollMoment", kLegFrame, {0, 4}, "1",
            "turning: the whole-body stance is asked for this many times the roll moment m·v·ω·h "
            "that the turn's sideways ground force exerts about the centre of mass from the ground, "

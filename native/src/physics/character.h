@@ -52,7 +52,7 @@ class Character {
   // "Standing on planted feet"). Walking leaves them off, as every gait was tuned.
   void holdFeet(bool hold);
 
-  // The walking controller's forward stop at each hip (gait::GaitParams::hipForwardStop): the
+  // The gait's forward stop at each hip (gait::GaitParams::hipForwardStop): the
   // thigh's forward swing limited to `stop` rad, or to the body's own range if that is smaller.
   // A limit row of the solver, as the body's own limit is: a stop as stiff as the joint's end,
   // which an explicit spring at 120 Hz could not give (docs/controller-notes.md §78).

@@ -34,7 +34,8 @@ void Agent::control() {
   controller.update(physics::kFixedStep, cs, torques.data());
   body->applyJointTorques(torques.data());
   if (controller.standing() != feetHeld) body->holdFeet(feetHeld = controller.standing());
-  if (controller.hipForwardStop() != hipStop) body->setHipForwardStop(hipStop = controller.hipForwardStop());
+  const double stop = controller.hipForwardStop();
+  if (stop != hipStop) body->setHipForwardStop(hipStop = stop);
   ++updates;
 }
 

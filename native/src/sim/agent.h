@@ -40,7 +40,7 @@ struct Agent {
   // (Simulation::isolateBroken) until a reset rebuilds it at `lastGood`.
   bool broken = false;
   bool feetHeld = false;  // the body's feet hold their place: the controller stands (holdFeet)
-  double hipStop = -1;    // the forward stop set on the body's hips (setHipForwardStop); -1: none yet
+  double hipStop = 0;     // the forward stop set on the body's hips (setHipForwardStop)
   bool parked = false;
   Eigen::Vector3d lastGood;    // the root leg frame's last finite position
   double lastGoodHeading = 0;  // and heading

@@ -8,6 +8,7 @@
 
 #include "body/morphology.h"
 #include "gait/gait_player.h"
+#include "gait/get_up_two_legs.h"
 #include "gait/ik.h"
 #include "gait/params.h"
 #include "gait/speed_keys.h"
@@ -78,6 +79,9 @@ class Controller {
   // set on the physics by physics::Character::setHipForwardStop): the gait's stop, released while
   // it gets up, which folds the legs as far as the body lets them.
   double hipForwardStop() const { return down() ? kNoHipForwardStop : params_.hipForwardStop; }
+  // The routine a body on two legs gets up by when it lies so (gait/get_up_two_legs.h; the
+  // defaults unless set: the get-up search tries others). The keys must outlive the controller.
+  void setGetUpRoutine(Lying lying, const GetUpRoutine& routine) { getUpRoutines_[static_cast<int>(lying)] = routine; }
 
  private:
   struct LegGeometry {
@@ -154,10 +158,12 @@ class Controller {
   SupportPolygon supportPolygon(const CharacterState& s) const;  // of the stance feet's soles
   // Getting up after a fall (gait/get_up.cpp). isDown: the walking criteria's fall test
   // (gait/fall.h) on every leg frame. getsUp notes a fall and, while down, writes the get-up's
-  // torques (getUp) and returns true.
+  // torques (getUp, or getUpOnTwoLegs) and returns true.
   bool isDown(const CharacterState& s) const;
   bool getsUp(const CharacterState& s, double dt, Eigen::Vector3d* torques);
   void getUp(const CharacterState& s, double dt, Eigen::Vector3d* torques);
+  // A body on one leg frame with two legs (gait/get_up_two_legs.cpp): rolls onto its back, kips up.
+  void getUpOnTwoLegs(const CharacterState& s, double dt, Eigen::Vector3d* torques);
   // A joint PD (pd.h, jointPd) holding `segment` at `relative` to its parent, added to its torque.
   void jointHold(int segment, const CharacterState& s, const Eigen::Quaterniond& relative, double kp,
                  double kd, Eigen::Vector3d* torques) const;
@@ -215,6 +221,14 @@ class Controller {
   bool frameUp_[kMaxLegFrames] = {};
   int risenSteps_ = 0;
   int onFeetSteps_ = 0;
+  // Getting up on two legs: the routine running (a Lying, −1 none: waiting to lie still), its
+  // steps, and the stillness test's clock and the torso's axes at its last sample.
+  GetUpRoutine getUpRoutines_[3] = {defaultGetUpRoutine(Lying::OnBack), defaultGetUpRoutine(Lying::OnFront),
+                                    defaultGetUpRoutine(Lying::OnSide)};
+  int lying_ = -1;
+  int routineSteps_ = 0;
+  int stillSteps_ = 0;
+  Eigen::Vector3d stillForward_ = Eigen::Vector3d::Zero(), stillUp_ = Eigen::Vector3d::Zero();
   double standYaw_ = 0;  // the heading it stands facing (set as it comes to a stand)
   // Per segment: a leg joint's orientation relative to its parent as it came to a stand (the
   // table's pose; identity for the other segments).

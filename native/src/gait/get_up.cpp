@@ -23,6 +23,9 @@
 // Every joint is a PD towards its pose; the poses press against the joints' own limits (the hip's
 // fold and sideways swing, the knee's flexion: LegGeometry). The numbers were found by a search
 // over these poses (the controller notes give it and its validation).
+//
+// A body on one leg frame with one pair of legs (the biped) has no such poses: it rolls onto its
+// back and kips up (get_up_two_legs.cpp). Bodies on one leg frame with more legs do not get up.
 #include <algorithm>
 #include <cmath>
 
@@ -79,7 +82,7 @@ bool Controller::isDown(const CharacterState& s) const {
 }
 
 bool Controller::getsUp(const CharacterState& s, double dt, Vector3d* torques) {
-  if (!standsAsTable()) return false;  // the biped has no arms to rise on: not built
+  if (!standsAsTable() && m_.legs.size() != 2) return false;  // one leg frame: built for one pair of legs
   if (stand_ != Stand::Down) {
     downSteps_ = isDown(s) ? downSteps_ + 1 : 0;
     if (downSteps_ * dt < kDownAfter) return false;
@@ -87,8 +90,12 @@ bool Controller::getsUp(const CharacterState& s, double dt, Vector3d* torques) {
     onFeetSteps_ = 0;
     risenSteps_ = 0;
     for (bool& up : frameUp_) up = false;
+    lying_ = -1;
+    stillSteps_ = 0;
+    stillForward_ = stillUp_ = Vector3d::Zero();
   }
-  getUp(s, dt, torques);
+  if (standsAsTable()) getUp(s, dt, torques);
+  else getUpOnTwoLegs(s, dt, torques);
   return true;
 }
 

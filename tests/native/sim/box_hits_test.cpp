@@ -1,7 +1,8 @@
 // The box-hit trial (sim/box_hits.h): boxes thrown as the demo throws them hit the walking
 // character (the simulation aims them), every hit is judged, the trial is reproducible from its
 // seed, and what it counts as knocked over follows the box: a pebble knocks over nobody, a crate
-// of half a tonne everybody. A quadruped it knocks over gets up by itself and walks on.
+// of half a tonne everybody. A quadruped it knocks over gets up by itself and walks on; a biped
+// kips up by itself from some of its falls.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,6 +83,20 @@ TEST(BoxHits, AQuadrupedKnockedOverGetsUpByItself) {
   const BoxHitResult unwatched = runBoxHits(o);
   EXPECT_EQ(unwatched.falls(), r.falls());
   EXPECT_EQ(unwatched.getUps(), 0);
+}
+
+TEST(BoxHits, ABipedKnockedOverKipsUpByItself) {
+  // Watched 10 s after each fall, the biped rolls onto its back and kips up onto its feet
+  // (gait/get_up_two_legs.cpp), tries again when a kip-up falls back, and walks on. On these
+  // throws 5 hits knock it over: one it catches itself in a stumble (up at once, as before the
+  // get-up), two it kips up from, 6–8 s after the fall, and two leave it down.
+  BoxHitOptions o = trial(Character::Biped, 16, 0.12);
+  o.getUpSeconds = 10;
+  const BoxHitResult r = runBoxHits(o);
+  ASSERT_GE(r.falls(), 3);
+  int kipUps = 0;
+  for (const auto& h : r.hits) kipUps += h.gotUpAfter > 0.5 ? 1 : 0;
+  EXPECT_GE(kipUps, 2);
 }
 
 TEST(BoxHits, AQuadrupedThatGotUpWalksOnAtItsGoal) {

@@ -1,0 +1,241 @@
+// Probe, built only on request (`ninja -C build/native gaitlab_getup_search`): CMA-ES (Hansen
+// 2016, the tutorial's update with its default weights) over one routine of the get-up on two
+// legs (gait/get_up_two_legs.h), the biped laid down still on its back, front or left side and
+// rolled by −10°, −5°, 0, 5° and 10° about its long axis. Each candidate runs as the controller
+// runs it (waiting to lie still, the routine, the hand-over to the stand); the score, averaged
+// over the five starts, over the last second of the run:
+//   - back: how high and upright the torso stands (its centre's height / 1.16 m times its up
+//     axis's height), plus a tenth of the best of that over the run;
+//   - front, side: how squarely it lies on its back (the forward axis's height), less while it
+//     still turns, plus a tenth of the best.
+// Prints the best so far every 10 generations and writes it, 12 numbers a key in GetUpKey's
+// order, to /tmp/getup-LYING-SEED.txt. With GENERATIONS 0 it scores START_FILE and prints the run.
+//
+//   build/native/gaitlab_getup_search back|front|side KEYS GENERATIONS SEED [START_FILE] [SIGMA] [POPULATION] [GOAL_SPEED]
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <btBulletDynamicsCommon.h>
+
+#include "gait/heading.h"
+#include "sim/simulation.h"
+#include "sim/walk_trial.h"
+
+using namespace gaitlab;
+
+namespace {
+
+std::string gLying = "back";
+int gKeys = 5;
+double gGoalSpeed = 0.0;
+bool gVerbose = false;
+constexpr double kHold = 4.0;  // s after the routine's keys
+constexpr int kPerKey = 12;
+
+// A key's numbers in GetUpKey's order and their bounds: seconds, gain, hip, knee, ankle, twist,
+// outwards (each of the last five for both legs).
+void bounds(int j, double* lo, double* hi) {
+  static const double l[kPerKey] = {0.15, 0.3, -0.7, -0.7, 0.0, 0.0, -0.9, -0.9, -0.5, -0.5, -0.6, -0.6};
+  static const double h[kPerKey] = {1.5, 2.0, 2.0, 2.0, 2.4, 2.4, 0.9, 0.9, 0.5, 0.5, 0.6, 0.6};
+  *lo = l[j];
+  *hi = h[j];
+}
+
+bool searched(int j) { return gLying == "side" || j < 8; }  // on its back or front the hips neither twist nor swing out
+
+gait::GetUpKey keyOf(const double* x) {
+  return gait::GetUpKey{x[0], x[1], {x[2], x[3]}, {x[4], x[5]}, {x[6], x[7]}, {x[8], x[9]}, {x[10], x[11]}};
+}
+
+// The biped, standing as spawned, turned as a rigid whole to lie on its back, front or left
+// side, rolled by `roll` about its long axis, and lowered onto the ground, at rest.
+void layDown(sim::Simulation& sim, double roll) {
+  physics::Character& c = const_cast<physics::Character&>(sim.character(0));
+  Eigen::Quaterniond r = Eigen::Quaterniond::Identity();
+  if (gLying == "front") r = Eigen::AngleAxisd(gait::kPi / 2, Eigen::Vector3d::UnitX());
+  if (gLying == "back") r = Eigen::AngleAxisd(-gait::kPi / 2, Eigen::Vector3d::UnitX());
+  if (gLying == "side") r = Eigen::AngleAxisd(gait::kPi / 2, Eigen::Vector3d::UnitZ());
+  r = Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()) * r;
+  const btVector3 pivot = c.body(0)->getWorldTransform().getOrigin();
+  const btQuaternion q(r.x(), r.y(), r.z(), r.w());
+  const btTransform rotation(q, btVector3(0, 0, 0));
+  double lowest = 1e9;
+  for (int k = 0; k < c.segmentCount(); ++k) {
+    btRigidBody* b = c.body(k);
+    btTransform t = b->getWorldTransform();
+    t.setOrigin(pivot + rotation(t.getOrigin() - pivot));
+    t.setRotation(q * t.getRotation());
+    b->setWorldTransform(t);
+    btVector3 low, high;
+    b->getCollisionShape()->getAabb(t, low, high);
+    lowest = std::min(lowest, static_cast<double>(low.y()));
+  }
+  for (int k = 0; k < c.segmentCount(); ++k) {
+    btRigidBody* b = c.body(k);
+    btTransform t = b->getWorldTransform();
+    t.setOrigin(t.getOrigin() + btVector3(0, 0.01 - lowest, 0));
+    b->setWorldTransform(t);
+    b->setInterpolationWorldTransform(t);
+    if (b->getMotionState()) b->getMotionState()->setWorldTransform(t);
+    b->setLinearVelocity(btVector3(0, 0, 0));
+    b->setAngularVelocity(btVector3(0, 0, 0));
+    b->setInterpolationLinearVelocity(btVector3(0, 0, 0));
+    b->setInterpolationAngularVelocity(btVector3(0, 0, 0));
+    b->activate(true);
+  }
+}
+
+double evaluateOne(const std::vector<double>& x, double roll) {
+  std::vector<gait::GetUpKey> keys;
+  double total = 0;
+  for (int k = 0; k < gKeys; ++k) {
+    keys.push_back(keyOf(&x[kPerKey * k]));
+    total += keys.back().seconds;
+  }
+  sim::Simulation sim(1, 7);
+  sim::WalkOptions o;
+  o.character = sim::Character::Biped;
+  o.speed = gGoalSpeed;
+  sim::setUpWalk(sim, o);
+  const gait::Lying lying = gLying == "back" ? gait::Lying::OnBack : gLying == "front" ? gait::Lying::OnFront : gait::Lying::OnSide;
+  for (gait::Lying l : {gait::Lying::OnBack, gait::Lying::OnFront, gait::Lying::OnSide})
+    sim.controller(0).setGetUpRoutine(l, l == lying ? gait::GetUpRoutine{keys.data(), gKeys, lying == gait::Lying::OnSide}
+                                                    : gait::GetUpRoutine{});
+  layDown(sim, roll);
+  const int steps = static_cast<int>((0.6 + total + kHold) / physics::kFixedStep);
+  const int lastSecond = static_cast<int>(1.0 / physics::kFixedStep);
+  double score = 0, best = 0;
+  for (int i = 0; i < steps; ++i) {
+    sim.step(1);
+    const physics::SegmentState st = sim.character(0).segmentState(0);
+    const double up = (st.orientation * Eigen::Vector3d::UnitY()).y();
+    const double forward = (st.orientation * Eigen::Vector3d::UnitZ()).y();
+    const double h = st.position.y();
+    const double v = lying == gait::Lying::OnBack
+                         ? std::min(1.0, h / 1.16) * std::max(0.0, up)
+                         : std::max(0.0, forward) * (1.0 - std::min(1.0, st.angularVelocity.norm() / 3.0));
+    best = std::max(best, v);
+    if (i >= steps - lastSecond) score += v / lastSecond;
+    if (gVerbose && i % 12 == 0)
+      std::printf("t %5.2f down %d torso height %.2f up %5.2f forward %5.2f score %.2f\n", sim.time(),
+                  sim.controller(0).down() ? 1 : 0, h, up, forward, v);
+  }
+  return score + 0.1 * best;
+}
+
+double evaluate(const std::vector<double>& x) {
+  constexpr int kStarts = 5;
+  double sum = 0;
+  for (int k = 0; k < kStarts; ++k) {
+    const double roll = (k - 0.5 * (kStarts - 1)) * 0.35 / (kStarts - 1);  // −10° … 10°
+    if (gVerbose) std::printf("rolled %.0f°\n", roll * 180 / gait::kPi);
+    sum += evaluateOne(x, roll);
+  }
+  return sum / kStarts;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 5) {
+    std::fprintf(stderr, "usage: gaitlab_getup_search back|front|side KEYS GENERATIONS SEED [START_FILE] [SIGMA] [POPULATION] [GOAL_SPEED]\n");
+    return 2;
+  }
+  gLying = argv[1];
+  if (gLying != "back" && gLying != "front" && gLying != "side") {
+    std::fprintf(stderr, "%s: not back, front or side\n", argv[1]);
+    return 2;
+  }
+  gKeys = std::max(1, std::atoi(argv[2]));
+  if (argc > 8) gGoalSpeed = std::atof(argv[8]);
+  const int generations = std::atoi(argv[3]);
+  const unsigned seed = static_cast<unsigned>(std::atoi(argv[4]));
+  const int n = kPerKey * gKeys;
+  std::vector<double> lo(n), hi(n);
+  for (int i = 0; i < n; ++i) bounds(i % kPerKey, &lo[i], &hi[i]);
+  auto decode = [&](const Eigen::VectorXd& z) {
+    std::vector<double> x(n);
+    for (int i = 0; i < n; ++i) {
+      double u = z[i];
+      u = std::fmod(std::abs(u), 2.0);
+      if (u > 1) u = 2 - u;  // reflect into [0, 1]
+      x[i] = searched(i % kPerKey) ? lo[i] + u * (hi[i] - lo[i]) : 0.0;
+    }
+    return x;
+  };
+  Eigen::VectorXd mean = Eigen::VectorXd::Constant(n, 0.5);
+  if (argc > 5) {
+    FILE* f = std::fopen(argv[5], "r");
+    for (int i = 0; i < n && f; ++i) {
+      double v;
+      if (std::fscanf(f, "%lf", &v) == 1) mean[i] = (v - lo[i]) / (hi[i] - lo[i]);
+    }
+    if (f) std::fclose(f);
+    if (generations == 0) {
+      gVerbose = true;
+      std::printf("score %.4f\n", evaluate(decode(mean)));
+      return 0;
+    }
+  }
+  // CMA-ES (Hansen 2016, the tutorial's defaults).
+  const int lambda = argc > 7 ? std::max(4, std::atoi(argv[7])) : 24, mu = lambda / 2;
+  Eigen::VectorXd w(mu);
+  for (int i = 0; i < mu; ++i) w[i] = std::log(mu + 0.5) - std::log(i + 1.0);
+  w /= w.sum();
+  const double mueff = 1.0 / w.squaredNorm();
+  const double cc = (4 + mueff / n) / (n + 4 + 2 * mueff / n), cs = (mueff + 2) / (n + mueff + 5);
+  const double c1 = 2 / ((n + 1.3) * (n + 1.3) + mueff);
+  const double cmu = std::min(1 - c1, 2 * (mueff - 2 + 1 / mueff) / ((n + 2) * (n + 2) + mueff));
+  const double damps = 1 + 2 * std::max(0.0, std::sqrt((mueff - 1) / (n + 1)) - 1) + cs;
+  const double chiN = std::sqrt(n) * (1 - 1.0 / (4 * n) + 1.0 / (21.0 * n * n));
+  double sigma = argc > 6 ? std::atof(argv[6]) : 0.25;
+  Eigen::VectorXd pc = Eigen::VectorXd::Zero(n), ps = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Identity(n, n), B = C;
+  Eigen::VectorXd D = Eigen::VectorXd::Ones(n);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  double bestEver = -1;
+  std::vector<double> bestX;
+  for (int g = 0; g < generations; ++g) {
+    std::vector<Eigen::VectorXd> zs(lambda), ys(lambda);
+    std::vector<std::pair<double, int>> f(lambda);
+    for (int k = 0; k < lambda; ++k) {
+      Eigen::VectorXd z(n);
+      for (int i = 0; i < n; ++i) z[i] = normal(rng);
+      ys[k] = B * D.asDiagonal() * z;
+      zs[k] = mean + sigma * ys[k];
+      f[k] = {-evaluate(decode(zs[k])), k};
+    }
+    std::sort(f.begin(), f.end());
+    if (-f[0].first > bestEver) { bestEver = -f[0].first; bestX = decode(zs[f[0].second]); }
+    Eigen::VectorXd old = mean;
+    mean.setZero();
+    for (int i = 0; i < mu; ++i) mean += w[i] * zs[f[i].second];
+    const Eigen::VectorXd step = (mean - old) / sigma;
+    const Eigen::MatrixXd invSqrtC = B * D.cwiseInverse().asDiagonal() * B.transpose();
+    ps = (1 - cs) * ps + std::sqrt(cs * (2 - cs) * mueff) * invSqrtC * step;
+    const bool hsig = ps.norm() / std::sqrt(1 - std::pow(1 - cs, 2 * (g + 1))) / chiN < 1.4 + 2.0 / (n + 1);
+    pc = (1 - cc) * pc + (hsig ? std::sqrt(cc * (2 - cc) * mueff) : 0.0) * step;
+    Eigen::MatrixXd rankMu = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < mu; ++i) { const Eigen::VectorXd y = (zs[f[i].second] - old) / sigma; rankMu += w[i] * y * y.transpose(); }
+    C = (1 - c1 - cmu) * C + c1 * (pc * pc.transpose() + (hsig ? 0 : cc * (2 - cc)) * C) + cmu * rankMu;
+    sigma *= std::exp((cs / damps) * (ps.norm() / chiN - 1));
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(C);
+    B = es.eigenvectors();
+    D = es.eigenvalues().cwiseMax(1e-20).cwiseSqrt();
+    if (g % 10 == 0 || g == generations - 1) {
+      std::fprintf(stderr, "gen %d best %.4f gen-best %.4f sigma %.3f\n", g, bestEver, -f[0].first, sigma);
+      FILE* out = std::fopen(("/tmp/getup-" + gLying + "-" + std::to_string(seed) + ".txt").c_str(), "w");
+      for (int i = 0; i < n; ++i) std::fprintf(out, "%.5f%s", bestX[i], i % kPerKey == kPerKey - 1 ? "\n" : " ");
+      std::fclose(out);
+    }
+  }
+  return 0;
+}

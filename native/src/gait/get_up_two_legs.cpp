@@ -1,0 +1,157 @@
+// Getting up on two legs (beyond the thesis; Coros et al. 2011 list getting up among their dog's
+// skills): the biped, which has no arms to rise on, rolls onto its back and kips up onto its feet.
+//
+// Legs alone do not lift this body from its front: a tuck reaches a knee-chest position, and
+// neither extending the hips nor pressing the knees into their fold carries the hips back over the
+// heels (docs/controller-notes.md, "A get-up for the biped"). From its back they can throw it up:
+// the legs swing up over the body, are whipped down with the knees folding, and the body follows
+// them up onto its feet, the kip-up of gymnasts and martial artists. So the body first gets onto
+// its back. What the legs do is a routine of keyframes (get_up_two_legs.h), one per way it lies:
+//   - on its back (the torso's forward axis more than 37° above the horizontal): the kip-up;
+//   - on its front: a roll onto its back;
+//   - on a side: a roll onto its back, the legs named by the side nearer the ground, so that one
+//     routine serves both sides;
+//   - sitting or otherwise upright, none: the legs relax, and it lies back.
+// A routine starts once the body lies still (kStillChord) and runs to its end; then the way the
+// body lies picks again, so a kip-up that falls back is tried again. At the top of a kip-up (the
+// torso upright within acos kHandOverUp, its centre above kHandOverHeight) it hands over to the
+// stand (standing.cpp), which catches the landing and stands, or walks on if the goal moves.
+//
+// The keyframes were found by CMA-ES (Hansen 2016) with `gaitlab_getup_search`
+// (native/probes/getup_search.cpp): the body laid down still on its back, front or left side,
+// and rolled by −10°, −5°, 0, 5° and 10° about its long axis, scored by how high and upright its
+// torso stood over the last second (the rolls: how squarely it lay on its back). The controller
+// notes give the search and what it gets up from.
+#include <algorithm>
+#include <cmath>
+
+#include "gait/controller.h"
+#include "gait/get_up_two_legs.h"
+
+namespace gaitlab::gait {
+
+using Eigen::AngleAxisd;
+using Eigen::Quaterniond;
+using Eigen::Vector3d;
+
+namespace {
+
+// Still: the torso's up and forward axes moved less than this (as a chord) over kStillTime. Its
+// angular velocity is no measure: resting on the ground it reads several rad/s the contacts cancel.
+constexpr double kStillTime = 0.2;  // s
+constexpr double kStillChord = 0.2;
+constexpr double kOnBack = 0.6, kOnFront = -0.6;  // the forward axis's height, on its back / front
+constexpr double kUpright = 0.5;                  // the up axis's height above which it is not lying
+constexpr double kHandOverUp = 0.9, kHandOverHeight = 0.8;  // up axis's height; torso's centre, m
+
+// The PDs' gains at gain 1 (N·m/rad, N·m·s/rad). The foot's are small: a 1 kg foot's PD
+// stiffer than about 60 / 1 is unstable at the physics' 120 Hz.
+constexpr double kHipKp = 800, kHipKd = 40, kKneeKp = 500, kKneeKd = 25, kFootKp = 40, kFootKd = 0.6;
+
+// While it waits to lie still: the legs relaxed and nearly straight.
+constexpr GetUpKey kRelaxed = {1.0, 0.5, {0, 0}, {0.2, 0.2}, {0, 0}, {0, 0}, {0, 0}};
+
+// The routines: seconds, gain, then per leg hip, knee, ankle, twist, outwards (get_up_two_legs.h).
+// From its back, the kip-up: the legs fold (0.18 s), swing up over the body nearly straight
+// (1.2 s), are whipped down with the knees folding (0.19 s, stiff), and reach for the ground.
+constexpr GetUpKey kKipUp[] = {
+    {0.17978, 0.39701, {1.90306, 1.21349}, {0.97763, 1.64861}, {-0.83567, -0.54171}, {0, 0}, {0, 0}},
+    {1.19201, 0.49783, {1.69670, 1.89394}, {0.09456, 0.64529}, {0.01875, -0.51962}, {0, 0}, {0, 0}},
+    {0.19211, 1.60307, {-0.13346, 0.32671}, {2.37458, 1.34201}, {-0.55889, 0.73965}, {0, 0}, {0, 0}},
+    {1.14721, 0.35739, {0.88195, 0.74649}, {0.30669, 0.73064}, {-0.72748, -0.85551}, {0, 0}, {0, 0}},
+    {0.40494, 0.56359, {1.40205, -0.62846}, {1.40683, 0.49728}, {-0.85179, 0.66078}, {0, 0}, {0, 0}},
+};
+// From its front: one leg swung forwards and the other folded, then both tucked, which tips the
+// body over its head onto its back.
+constexpr GetUpKey kRollFromFront[] = {
+    {0.19972, 0.97046, {0.38705, -0.54439}, {0.08976, 2.25769}, {-0.80417, 0.35138}, {0, 0}, {0, 0}},
+    {0.56123, 0.55989, {0.04218, 1.71184}, {1.34068, 0.58674}, {0.05107, -0.75796}, {0, 0}, {0, 0}},
+    {1.07337, 1.85514, {1.99481, -0.69416}, {0.20476, 0.75931}, {-0.57636, 0.53755}, {0, 0}, {0, 0}},
+    {0.21160, 0.60387, {0.76252, 0.74826}, {2.21753, 2.05766}, {0.41265, 0.04021}, {0, 0}, {0, 0}},
+};
+// From a side ([0] the lower leg): the legs scissor and fold, rolling the body onto its back.
+constexpr GetUpKey kRollFromSide[] = {
+    {0.67647, 1.42082, {1.87879, -0.54304}, {1.49664, 0.24677}, {0.61987, -0.53776}, {-0.31885, 0.29054}, {0.52551, 0.54307}},
+    {1.14632, 1.01686, {-0.60234, 0.68861}, {0.20579, 1.78182}, {-0.03777, 0.34881}, {0.17088, 0.18968}, {0.18590, 0.19166}},
+    {0.90329, 0.69566, {1.71319, 0.72401}, {1.96397, 1.97221}, {-0.54708, 0.58655}, {-0.34846, -0.47195}, {0.43706, 0.45760}},
+};
+
+template <int N>
+GetUpRoutine routineOf(const GetUpKey (&keys)[N], bool bySide) {
+  return GetUpRoutine{keys, N, bySide};
+}
+
+}  // namespace
+
+GetUpRoutine defaultGetUpRoutine(Lying lying) {
+  switch (lying) {
+    case Lying::OnBack: return routineOf(kKipUp, false);
+    case Lying::OnFront: return routineOf(kRollFromFront, false);
+    case Lying::OnSide: return routineOf(kRollFromSide, true);
+  }
+  return {};
+}
+
+void Controller::getUpOnTwoLegs(const CharacterState& s, double dt, Vector3d* torques) {
+  const BodyState& torso = s.segments[m_.legFrames[0]];
+  const Vector3d up = torso.orientation * Vector3d::UnitY(), forward = torso.orientation * Vector3d::UnitZ();
+  const double height = torso.position.y() - s.ground.at(torso.position.x(), torso.position.z());
+  if (lying_ == static_cast<int>(Lying::OnBack) && up.y() > kHandOverUp && height > kHandOverHeight) {
+    // The top of a kip-up: the stand catches the landing (standing.cpp).
+    stand_ = Stand::Settling;
+    player_.hold();
+    downSteps_ = 0;
+    lying_ = -1;
+    return;
+  }
+  if (lying_ < 0) {
+    bool still = false;
+    if (++stillSteps_ * dt >= kStillTime) {
+      still = (forward - stillForward_).norm() < kStillChord && (up - stillUp_).norm() < kStillChord;
+      stillForward_ = forward;
+      stillUp_ = up;
+      stillSteps_ = 0;
+    }
+    if (still) {
+      if (forward.y() > kOnBack) lying_ = static_cast<int>(Lying::OnBack);
+      else if (forward.y() < kOnFront) lying_ = static_cast<int>(Lying::OnFront);
+      else if (up.y() < kUpright) lying_ = static_cast<int>(Lying::OnSide);
+      if (lying_ >= 0 && getUpRoutines_[lying_].count == 0) lying_ = -1;
+      routineSteps_ = 0;
+    }
+  }
+  const GetUpKey* key = &kRelaxed;
+  bool bySide = false;
+  if (lying_ >= 0) {
+    const GetUpRoutine& r = getUpRoutines_[lying_];
+    const double t = (routineSteps_++) * dt;
+    int k = 0;
+    double start = 0;
+    while (k < r.count && t > start + r.keys[k].seconds) start += r.keys[k++].seconds;
+    if (k == r.count) {  // done: the way it lies picks again once it is still
+      lying_ = -1;
+      stillSteps_ = 0;
+    } else {
+      key = &r.keys[k];
+      bySide = r.bySide;
+    }
+  }
+  const double lowerSide = (torso.orientation * Vector3d::UnitX()).y() < 0 ? 1.0 : -1.0;  // +1 the left
+  const double kp = key->gain, kd = std::sqrt(key->gain);
+  for (size_t l = 0; l < m_.legs.size(); ++l) {
+    const body::Leg& leg = m_.legs[l];
+    const double side = geometry_[l].side;  // +1 left
+    const int i = bySide ? (side == lowerSide ? 0 : 1) : (side > 0 ? 0 : 1);
+    const Quaterniond hip(AngleAxisd(side * key->outwards[i], Vector3d::UnitZ()) *
+                          AngleAxisd(-key->hip[i], Vector3d::UnitX()) *
+                          AngleAxisd(side * key->twist[i], Vector3d::UnitY()));
+    jointHold(leg.upper, s, hip, kHipKp * kp, kHipKd * kd, torques);
+    jointHold(leg.lower, s, Quaterniond(AngleAxisd(key->knee[i] * leg.kneeBend, Vector3d::UnitX())), kKneeKp * kp,
+              kKneeKd * kd, torques);
+    jointHold(leg.foot, s, Quaterniond(AngleAxisd(key->ankle[i], Vector3d::UnitX())), kFootKp * kp, kFootKd * kd,
+              torques);
+  }
+  clampTorques(torques);
+}
+
+}  // namespace gaitlab::gait

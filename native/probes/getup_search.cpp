@@ -6,8 +6,9 @@
 // over the five starts, over the last second of the run:
 //   - back: how high and upright the torso stands (its centre's height / 1.16 m times its up
 //     axis's height), plus a tenth of the best of that over the run;
-//   - front, side: how squarely it lies on its back (the forward axis's height), less while it
-//     still turns, plus a tenth of the best.
+//   - front, side: how squarely it lies on its back (the forward axis's height), plus a tenth of
+//     the best. (Not less while it turns: lying on the ground its bodies read angular velocities
+//     of several rad/s that the contacts cancel.)
 // Prints the best so far every 10 generations and writes it, 12 numbers a key in GetUpKey's
 // order, to /tmp/getup-LYING-SEED.txt. With GENERATIONS 0 it scores START_FILE and prints the run.
 //
@@ -120,7 +121,7 @@ double evaluateOne(const std::vector<double>& x, double roll) {
     const double h = st.position.y();
     const double v = lying == gait::Lying::OnBack
                          ? std::min(1.0, h / 1.16) * std::max(0.0, up)
-                         : std::max(0.0, forward) * (1.0 - std::min(1.0, st.angularVelocity.norm() / 3.0));
+                         : std::max(0.0, forward);
     best = std::max(best, v);
     if (i >= steps - lastSecond) score += v / lastSecond;
     if (gVerbose && i % 12 == 0)

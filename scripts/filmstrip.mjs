@@ -9,6 +9,8 @@
 //                              [--params FILE]   (a gait file, given to the page as a link carries one)
 //                              [--throw]   (after the warm-up, a box thrown at it from the camera, as
 //                                           the demo's shift-click throws one: a fall, and getting up)
+//                              [--after STEPS]   (with --throw: steps run after the throw before the
+//                                                 first frame, to film the getting up, not the blow)
 //   node scripts/filmstrip.mjs --creature insect [...]   (a shipped creature, public/creatures/insect.json,
 //                                                         alone in the scene: ?characters=0&creature=insect)
 //
@@ -45,6 +47,7 @@ try {
       params: { type: 'string' },
       out: { type: 'string' },
       throw: { type: 'boolean', default: false },
+      after: { type: 'string', default: '0' },
     },
   }));
 } catch (error) {
@@ -65,6 +68,8 @@ const count = (name, min, max) => {
   return v;
 };
 const frames = count('frames', 1, 24), every = count('every', 1, 1200), warmup = count('warmup', 0, 12000);
+const after = count('after', 0, 12000);
+if (after > 0 && !args.throw) usage('--after counts the steps after --throw');
 const speed = args.speed === undefined ? null : Number(args.speed);
 if (speed !== null && !(Number.isFinite(speed) && speed >= 0 && speed <= 5)) usage('--speed must be in [0, 5] m/s (the goal speeds the CLI takes)');
 const out = path.resolve(args.out ?? path.join(repoDir, 'docs', 'images', `${creature ?? args.type}-gait.png`));
@@ -159,6 +164,7 @@ try {
       const c = window.gaitlab.characters().find((x) => x.id === id);
       window.gaitlab.throwBox([c.position[0], c.position[1], c.position[2]]);
     }, subject.id);
+    if (after > 0) await stepBy(after);
   }
   const [w, h] = view === 'biped' ? [260, 380] : [400, 300];  // one frame, px
   const shots = [];

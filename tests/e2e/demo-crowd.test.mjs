@@ -296,7 +296,7 @@ describe('the demo crowd', { timeout: TEST_TIMEOUT * 4 }, () => {
       // put, stand behind another character at the point aimed at. Such a biped is passed over
       // (not thrown at) and another picked, so the click always lands on the biped it names.
       // Of those in view, the one farthest from any other character is picked: the crowd walks
-      // within a metre of itself at times (and those knocked over lie where they fell), and a
+      // within a metre of itself at times (and those knocked over kip up where they fell), and a
       // box aimed at one of two walkers side by side may meet the other first.
       const occluded = [];
       let target = null;

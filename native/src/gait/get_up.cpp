@@ -24,8 +24,8 @@
 // fold and sideways swing, the knee's flexion: LegGeometry). The numbers were found by a search
 // over these poses (the controller notes give it and its validation).
 //
-// A body on one leg frame with one pair of legs (the biped) has no such poses: it rolls onto its
-// back and kips up (get_up_two_legs.cpp). Bodies on one leg frame with more legs do not get up.
+// A body on one leg frame, which carries one pair of legs (the biped), has no such poses: it rolls
+// onto its back and kips up (get_up_two_legs.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -82,7 +82,6 @@ bool Controller::isDown(const CharacterState& s) const {
 }
 
 bool Controller::getsUp(const CharacterState& s, double dt, Vector3d* torques) {
-  if (!standsAsTable() && m_.legs.size() != 2) return false;  // one leg frame: built for one pair of legs
   if (stand_ != Stand::Down) {
     downSteps_ = isDown(s) ? downSteps_ + 1 : 0;
     if (downSteps_ * dt < kDownAfter) return false;

@@ -17,11 +17,11 @@
 // torso upright within acos kHandOverUp, its centre above kHandOverHeight) it hands over to the
 // stand (standing.cpp), which catches the landing and stands, or walks on if the goal moves.
 //
-// The keyframes were found by CMA-ES (Hansen 2016) with `gaitlab_getup_search`
-// (native/probes/getup_search.cpp): the body laid down still on its back, front or left side,
-// and rolled by −10°, −5°, 0, 5° and 10° about its long axis, scored by how high and upright its
-// torso stood over the last second (the rolls: how squarely it lay on its back). The controller
-// notes give the search and what it gets up from.
+// The keyframes were found by CMA-ES (Hansen 2016) from the body laid down still on its back,
+// front or left side, rolled up to 10° either way about its long axis, scored by how high and
+// upright its torso stood at the end (the rolls: how squarely it lay on its back). The controller
+// notes (§79) give the search, the probe that repeats it (native/probes/getup_search.cpp) and what
+// the get-up gets up from.
 #include <algorithm>
 #include <cmath>
 

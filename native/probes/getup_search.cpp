@@ -58,7 +58,7 @@ gait::GetUpKey keyOf(const double* x) {
 // The biped, standing as spawned, turned as a rigid whole to lie on its back, front or left
 // side, rolled by `roll` about its long axis, and lowered onto the ground, at rest.
 void layDown(sim::Simulation& sim, double roll) {
-  physics::Character& c = const_cast<physics::Character&>(sim.character(0));
+  physics::Character& c = sim.character(0);
   Eigen::Quaterniond r = Eigen::Quaterniond::Identity();
   if (gLying == "front") r = Eigen::AngleAxisd(gait::kPi / 2, Eigen::Vector3d::UnitX());
   if (gLying == "back") r = Eigen::AngleAxisd(-gait::kPi / 2, Eigen::Vector3d::UnitX());

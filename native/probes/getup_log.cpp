@@ -3,13 +3,19 @@
 // SECONDS: when the controller noticed the fall, when it was back on its feet, and each leg
 // frame's roll as it got up (docs/controller-notes.md, "Getting up").
 //
-//   build/native/gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE] [TERRAIN] > log.txt
+// With CAPTURE_PREFIX, each fall's first moment lying still on its back, front and side (as the
+// get-up judges them, gait/get_up_two_legs.cpp: where its routines start) is appended to
+// PREFIX-back.txt, -front.txt or -side.txt, every body's position and orientation, one line a
+// body: the starts the get-up search (getup_search.cpp) can take instead of a body laid down.
+//
+//   build/native/gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE] [TERRAIN] [CAPTURE_PREFIX] > log.txt
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
 #include <btBulletDynamicsCommon.h>
 #include <map>
+#include <string>
 
 #include "gait/heading.h"
 #include "gait/params_io.h"
@@ -46,12 +52,18 @@ int main(int argc, char** argv) {
   o.seed = argc > 4 ? static_cast<uint32_t>(std::atol(argv[4])) : 7;
   const int throws = std::max(1, std::atoi(argv[3]));
   const double watch = argc > 5 ? std::atof(argv[5]) : 15.0;
-  const bool verbose = argc > 6 && std::atoi(argv[6]) != 0;
+  const int verboseLevel = argc > 6 ? std::atoi(argv[6]) : 0;
+  const bool verbose = verboseLevel == 1;
+  const bool traceUp = verboseLevel == 2;  // the landing: every 0.05 s for 3 s after it is up
+  const bool traceLie = verboseLevel == 3;  // how it lies: the torso's forward and up axes' heights every 0.25 s
   if (argc > 7 && !physics::parseTerrain(argv[7], &o.terrain)) {
     std::fprintf(stderr, "%s: not flat, slope or bumps\n", argv[7]);
     return 2;
   }
 
+  FILE* capture[3] = {nullptr, nullptr, nullptr};  // back, front, side
+  for (int l = 0; l < 3 && argc > 8; ++l)
+    capture[l] = std::fopen((std::string(argv[8]) + "-" + (l == 0 ? "back" : l == 1 ? "front" : "side") + ".txt").c_str(), "a");
   sim::TrialDraws draw(o.seed);
   int fallen = 0, gotUp = 0, standing = 0, upAndStanding = 0;
   double progress = 0;  // over the fallen: 1 − the worse leg frame's |roll| at the end / 180°
@@ -74,6 +86,8 @@ int main(int argc, char** argv) {
     const int steps = static_cast<int>(std::lround(watch / physics::kFixedStep));
     const body::Morphology& m = sim.character(0).morphology();
     Eigen::Vector3d lastLeg = Eigen::Vector3d::Zero();  // the root leg frame 3 s before the end
+    bool captured[3] = {false, false, false};
+    Eigen::Vector3d lastForward = Eigen::Vector3d::Zero(), lastUp = Eigen::Vector3d::Zero();
     for (int k = 0; k < steps; ++k) {
       sim.step(1);
       if (k == steps - static_cast<int>(std::lround(3.0 / physics::kFixedStep))) lastLeg = sim.character(0).segmentState(0).position;
@@ -81,6 +95,55 @@ int main(int argc, char** argv) {
       const bool down = sim.controller(0).down();
       if (down && downAt < 0) downAt = sim.time() - thrown;
       if (!down && downAt >= 0 && upAt < 0) upAt = sim.time() - thrown;
+      if (capture[0] && down && k % 24 == 0) {
+        const physics::SegmentState tr = sim.character(0).segmentState(m.legFrames[0]);
+        const Eigen::Vector3d fw = tr.orientation * Eigen::Vector3d::UnitZ(), upAxis = tr.orientation * Eigen::Vector3d::UnitY();
+        const int lying = fw.y() > 0.6 ? 0 : fw.y() < -0.6 ? 1 : upAxis.y() < 0.5 ? 2 : -1;  // back, front, side
+        if (lying >= 0 && !captured[lying] && (fw - lastForward).norm() < 0.2 && (upAxis - lastUp).norm() < 0.2) {
+          captured[lying] = true;
+          std::fprintf(capture[lying], "start %d %d\n", o.seed, t);
+          for (int q = 0; q < sim.character(0).segmentCount(); ++q) {
+            const physics::SegmentState sq = sim.character(0).segmentState(q);
+            std::fprintf(capture[lying], "%.6f %.6f %.6f %.6f %.6f %.6f %.6f\n", sq.position.x(), sq.position.y(), sq.position.z(),
+                         sq.orientation.x(), sq.orientation.y(), sq.orientation.z(), sq.orientation.w());
+          }
+        }
+        lastForward = fw;
+        lastUp = upAxis;
+      }
+      if (traceLie && fellAt >= 0 && k % 30 == 0) {
+        const physics::SegmentState tr = sim.character(0).segmentState(m.legFrames[0]);
+        std::printf("%c%+.1f/%+.1f ", down ? 'D' : 'u', (tr.orientation * Eigen::Vector3d::UnitZ()).y(), (tr.orientation * Eigen::Vector3d::UnitY()).y());
+      }
+      if (traceUp && upAt >= 0 && sim.time() - thrown - upAt < 3.0 && k % 6 == 0) {
+        const physics::SegmentState tr = sim.character(0).segmentState(m.legFrames[0]);
+        const Eigen::Vector3d fw = tr.orientation * Eigen::Vector3d::UnitZ();
+        const Eigen::Vector3d heading = Eigen::Vector3d(fw.x(), 0, fw.z()).normalized();
+        Eigen::Vector3d comV = Eigen::Vector3d::Zero(), com = Eigen::Vector3d::Zero();
+        double mass = 0;
+        for (int q = 0; q < sim.character(0).segmentCount(); ++q) {
+          const physics::SegmentState sq = sim.character(0).segmentState(q);
+          comV += m.segments[q].mass * sq.linearVelocity;
+          com += m.segments[q].mass * sq.position;
+          mass += m.segments[q].mass;
+        }
+        comV /= mass;
+        com /= mass;
+        std::printf("  com h %.2f v (%5.2f %5.2f) off (%5.2f %5.2f)", com.y(), comV.dot(heading), comV.dot(Eigen::Vector3d::UnitY().cross(heading)),
+                    (com - tr.position).dot(heading), (com - tr.position).dot(Eigen::Vector3d::UnitY().cross(heading)));
+        std::printf("  t %5.2f stand %d pitch %6.1f roll %6.1f h %.2f v_fwd %5.2f v_side %5.2f", sim.time() - thrown,
+                    sim.controller(0).standing() ? 1 : 0, std::asin(std::clamp(fw.y(), -1.0, 1.0)) * 180 / gait::kPi,
+                    rollOf(tr), tr.position.y(), tr.linearVelocity.dot(heading),
+                    tr.linearVelocity.dot(Eigen::Vector3d::UnitY().cross(heading)));
+        for (size_t l = 0; l < m.legs.size(); ++l) {
+          const physics::SegmentState fr = sim.character(0).segmentState(m.legs[l].legFrame);
+          const physics::SegmentState ft = sim.character(0).segmentState(m.legs[l].foot);
+          const Eigen::Vector3d local = fr.orientation.conjugate() * (ft.position - fr.position);
+          std::printf(" | foot%zu %5.2f %5.2f %5.2f st %d", l, local.x(), local.y(), local.z(),
+                      sim.controller(0).player().leg(static_cast<int>(l)).stance ? 1 : 0);
+        }
+        std::printf("\n");
+      }
       if (verbose && fellAt >= 0 && k % 30 == 0) {
         std::printf("  t %5.2f down %d", sim.time() - thrown, down ? 1 : 0);
         for (int lf : m.legFrames) {
@@ -136,6 +199,8 @@ int main(int argc, char** argv) {
     for (int lf : m.legFrames) std::printf(" roll %6.1f", rollOf(sim.character(0).segmentState(lf)));
     std::printf("\n");
   }
+  for (FILE* f : capture)
+    if (f) std::fclose(f);
   std::printf("fell %d, got up %d, standing at the end %d, both %d, progress %.3f\n", fallen, gotUp, standing,
               upAndStanding, fallen ? progress / fallen : 0.0);
   return 0;

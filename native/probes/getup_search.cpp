@@ -11,14 +11,20 @@
 //     of several rad/s that the contacts cancel.)
 // Prints the best so far every 10 generations and writes it, 12 numbers a key in GetUpKey's
 // order, to /tmp/getup-LYING-SEED.txt. With GENERATIONS 0 it scores START_FILE and prints the run.
+// With STARTS_FILE (written by getup_log.cpp from real falls) the starts are the first COUNT
+// bodies in it instead of the five laid down, every other one at goal 0 and the rest at
+// GOAL_SPEED, each watched kHold s after the routine. With HORIZON, every run lasts HORIZON s
+// from the start, however long the routine, and is scored over its last second: a routine that
+// takes longer has less time to stand (the get-up is judged 10 s after a fall).
 //
-//   build/native/gaitlab_getup_search back|front|side KEYS GENERATIONS SEED [START_FILE] [SIGMA] [POPULATION] [GOAL_SPEED]
+//   build/native/gaitlab_getup_search back|front|side KEYS GENERATIONS SEED [START_FILE] [SIGMA] [POPULATION] [GOAL_SPEED] [STARTS_FILE COUNT] [HORIZON]
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <array>
 #include <random>
 #include <string>
 #include <vector>
@@ -38,6 +44,9 @@ int gKeys = 5;
 double gGoalSpeed = 0.0;
 bool gVerbose = false;
 constexpr double kHold = 4.0;  // s after the routine's keys
+double gHorizon = 0;           // s a run lasts, if not 0
+// Starts from real falls (STARTS_FILE): per start, every body's position and orientation.
+std::vector<std::vector<std::array<double, 7>>> gStarts;
 constexpr int kPerKey = 12;
 
 // A key's numbers in GetUpKey's order and their bounds: seconds, gain, hip, knee, ankle, twist,
@@ -93,7 +102,25 @@ void layDown(sim::Simulation& sim, double roll) {
   }
 }
 
-double evaluateOne(const std::vector<double>& x, double roll) {
+// Puts every body where a start from a real fall had it, at rest.
+void placeAt(sim::Simulation& sim, const std::vector<std::array<double, 7>>& start) {
+  physics::Character& c = sim.character(0);
+  for (int k = 0; k < c.segmentCount() && k < static_cast<int>(start.size()); ++k) {
+    btRigidBody* b = c.body(k);
+    const std::array<double, 7>& p = start[k];
+    const btTransform t(btQuaternion(p[3], p[4], p[5], p[6]), btVector3(p[0], p[1] + 0.005, p[2]));
+    b->setWorldTransform(t);
+    b->setInterpolationWorldTransform(t);
+    if (b->getMotionState()) b->getMotionState()->setWorldTransform(t);
+    b->setLinearVelocity(btVector3(0, 0, 0));
+    b->setAngularVelocity(btVector3(0, 0, 0));
+    b->setInterpolationLinearVelocity(btVector3(0, 0, 0));
+    b->setInterpolationAngularVelocity(btVector3(0, 0, 0));
+    b->activate(true);
+  }
+}
+
+double evaluateOne(const std::vector<double>& x, double roll, int startIndex = -1) {
   std::vector<gait::GetUpKey> keys;
   double total = 0;
   for (int k = 0; k < gKeys; ++k) {
@@ -103,14 +130,15 @@ double evaluateOne(const std::vector<double>& x, double roll) {
   sim::Simulation sim(1, 7);
   sim::WalkOptions o;
   o.character = sim::Character::Biped;
-  o.speed = gGoalSpeed;
+  o.speed = startIndex >= 0 && startIndex % 2 == 0 ? 0.0 : gGoalSpeed;
   sim::setUpWalk(sim, o);
   const gait::Lying lying = gLying == "back" ? gait::Lying::OnBack : gLying == "front" ? gait::Lying::OnFront : gait::Lying::OnSide;
   for (gait::Lying l : {gait::Lying::OnBack, gait::Lying::OnFront, gait::Lying::OnSide})
     sim.controller(0).setGetUpRoutine(l, l == lying ? gait::GetUpRoutine{keys.data(), gKeys, lying == gait::Lying::OnSide}
                                                     : gait::GetUpRoutine{});
-  layDown(sim, roll);
-  const int steps = static_cast<int>((0.6 + total + kHold) / physics::kFixedStep);
+  if (startIndex >= 0) placeAt(sim, gStarts[startIndex]);
+  else layDown(sim, roll);
+  const int steps = static_cast<int>((gHorizon > 0 ? gHorizon : 0.6 + total + kHold) / physics::kFixedStep);
   const int lastSecond = static_cast<int>(1.0 / physics::kFixedStep);
   double score = 0, best = 0;
   for (int i = 0; i < steps; ++i) {
@@ -132,6 +160,15 @@ double evaluateOne(const std::vector<double>& x, double roll) {
 }
 
 double evaluate(const std::vector<double>& x) {
+  if (!gStarts.empty()) {
+    double sum = 0;
+    for (size_t k = 0; k < gStarts.size(); ++k) {
+      const double v = evaluateOne(x, 0, static_cast<int>(k));
+      if (gVerbose) std::printf("start %zu score %.3f\n", k, v);
+      sum += v;
+    }
+    return sum / gStarts.size();
+  }
   constexpr int kStarts = 5;
   double sum = 0;
   for (int k = 0; k < kStarts; ++k) {
@@ -156,6 +193,27 @@ int main(int argc, char** argv) {
   }
   gKeys = std::max(1, std::atoi(argv[2]));
   if (argc > 8) gGoalSpeed = std::atof(argv[8]);
+  if (argc > 11) gHorizon = std::atof(argv[11]);
+  if (argc > 10) {
+    FILE* f = std::fopen(argv[9], "r");
+    if (!f) {
+      std::fprintf(stderr, "%s: cannot read\n", argv[9]);
+      return 2;
+    }
+    const int count = std::atoi(argv[10]);
+    char line[256];
+    while (std::fgets(line, sizeof line, f)) {
+      if (std::strncmp(line, "start", 5) == 0) {
+        if (static_cast<int>(gStarts.size()) == count) break;
+        gStarts.emplace_back();
+        continue;
+      }
+      std::array<double, 7> p{};
+      if (!gStarts.empty() && std::sscanf(line, "%lf %lf %lf %lf %lf %lf %lf", &p[0], &p[1], &p[2], &p[3], &p[4], &p[5], &p[6]) == 7)
+        gStarts.back().push_back(p);
+    }
+    std::fclose(f);
+  }
   const int generations = std::atoi(argv[3]);
   const unsigned seed = static_cast<unsigned>(std::atoi(argv[4]));
   const int n = kPerKey * gKeys;

@@ -6,7 +6,8 @@
 // With CAPTURE_PREFIX, each fall's first moment lying still on its back, front and side (as the
 // get-up judges them, gait/get_up_two_legs.cpp: where its routines start) is appended to
 // PREFIX-back.txt, -front.txt or -side.txt, every body's position and orientation, one line a
-// body: the starts the get-up search (getup_search.cpp) can take instead of a body laid down.
+// body, and the moment it fell to PREFIX-fall.txt, with every body's velocities too: the starts
+// the get-up search (getup_search.cpp) can take instead of a body laid down.
 //
 //   build/native/gaitlab_getup_log GAIT_FILE SPEED THROWS [SEED] [SECONDS] [VERBOSE] [TERRAIN] [CAPTURE_PREFIX] > log.txt
 #include <cmath>
@@ -61,9 +62,9 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  FILE* capture[3] = {nullptr, nullptr, nullptr};  // back, front, side
-  for (int l = 0; l < 3 && argc > 8; ++l)
-    capture[l] = std::fopen((std::string(argv[8]) + "-" + (l == 0 ? "back" : l == 1 ? "front" : "side") + ".txt").c_str(), "a");
+  FILE* capture[4] = {nullptr, nullptr, nullptr, nullptr};  // back, front, side; the fall
+  for (int l = 0; l < 4 && argc > 8; ++l)
+    capture[l] = std::fopen((std::string(argv[8]) + "-" + (l == 0 ? "back" : l == 1 ? "front" : l == 2 ? "side" : "fall") + ".txt").c_str(), "a");
   sim::TrialDraws draw(o.seed);
   int fallen = 0, gotUp = 0, standing = 0, upAndStanding = 0;
   double progress = 0;  // over the fallen: 1 − the worse leg frame's |roll| at the end / 180°
@@ -91,7 +92,19 @@ int main(int argc, char** argv) {
     for (int k = 0; k < steps; ++k) {
       sim.step(1);
       if (k == steps - static_cast<int>(std::lround(3.0 / physics::kFixedStep))) lastLeg = sim.character(0).segmentState(0).position;
-      if (fellAt < 0 && sim::hasFallen(sim, 0)) fellAt = sim.time() - thrown;
+      if (fellAt < 0 && sim::hasFallen(sim, 0)) {
+        fellAt = sim.time() - thrown;
+        if (capture[3]) {  // the moment of the fall, with every body's velocities
+          std::fprintf(capture[3], "start %d %d\n", o.seed, t);
+          for (int q = 0; q < sim.character(0).segmentCount(); ++q) {
+            const physics::SegmentState sq = sim.character(0).segmentState(q);
+            std::fprintf(capture[3], "%.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f\n", sq.position.x(),
+                         sq.position.y(), sq.position.z(), sq.orientation.x(), sq.orientation.y(), sq.orientation.z(),
+                         sq.orientation.w(), sq.linearVelocity.x(), sq.linearVelocity.y(), sq.linearVelocity.z(),
+                         sq.angularVelocity.x(), sq.angularVelocity.y(), sq.angularVelocity.z());
+          }
+        }
+      }
       const bool down = sim.controller(0).down();
       if (down && downAt < 0) downAt = sim.time() - thrown;
       if (!down && downAt >= 0 && upAt < 0) upAt = sim.time() - thrown;

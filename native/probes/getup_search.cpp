@@ -15,9 +15,12 @@
 // bodies in it instead of the five laid down, every other one at goal 0 and the rest at
 // GOAL_SPEED, each watched kHold s after the routine. With HORIZON, every run lasts HORIZON s
 // from the start, however long the routine, and is scored over its last second: a routine that
-// takes longer has less time to stand (the get-up is judged 10 s after a fall).
+// takes longer has less time to stand (the get-up is judged 10 s after a fall). With
+// OTHERS_PREFIX the whole get-up runs, the other two routines read from PREFIX-back.txt,
+// -front.txt and -side.txt, and every run is scored on how the torso stands, as for the kip-up:
+// with starts taken at the moment of a fall (with their velocities), what the benchmark judges.
 //
-//   build/native/gaitlab_getup_search back|front|side KEYS GENERATIONS SEED [START_FILE] [SIGMA] [POPULATION] [GOAL_SPEED] [STARTS_FILE COUNT] [HORIZON]
+//   build/native/gaitlab_getup_search back|front|side KEYS GENERATIONS SEED [START_FILE] [SIGMA] [POPULATION] [GOAL_SPEED] [STARTS_FILE COUNT] [HORIZON] [OTHERS_PREFIX]
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -46,7 +49,11 @@ bool gVerbose = false;
 constexpr double kHold = 4.0;  // s after the routine's keys
 double gHorizon = 0;           // s a run lasts, if not 0
 // Starts from real falls (STARTS_FILE): per start, every body's position and orientation.
-std::vector<std::vector<std::array<double, 7>>> gStarts;
+std::vector<std::vector<std::array<double, 13>>> gStarts;
+// The whole get-up (OTHERS_PREFIX): the routines not searched, from PREFIX-back.txt, -front.txt and
+// -side.txt; every run is then scored on how the torso stands, whatever the routine searched.
+std::vector<gait::GetUpKey> gOthers[3];
+bool gWhole = false;
 constexpr int kPerKey = 12;
 
 // A key's numbers in GetUpKey's order and their bounds: seconds, gain, hip, knee, ankle, twist,
@@ -103,19 +110,19 @@ void layDown(sim::Simulation& sim, double roll) {
 }
 
 // Puts every body where a start from a real fall had it, at rest.
-void placeAt(sim::Simulation& sim, const std::vector<std::array<double, 7>>& start) {
+void placeAt(sim::Simulation& sim, const std::vector<std::array<double, 13>>& start) {
   physics::Character& c = sim.character(0);
   for (int k = 0; k < c.segmentCount() && k < static_cast<int>(start.size()); ++k) {
     btRigidBody* b = c.body(k);
-    const std::array<double, 7>& p = start[k];
+    const std::array<double, 13>& p = start[k];
     const btTransform t(btQuaternion(p[3], p[4], p[5], p[6]), btVector3(p[0], p[1] + 0.005, p[2]));
     b->setWorldTransform(t);
     b->setInterpolationWorldTransform(t);
     if (b->getMotionState()) b->getMotionState()->setWorldTransform(t);
-    b->setLinearVelocity(btVector3(0, 0, 0));
-    b->setAngularVelocity(btVector3(0, 0, 0));
-    b->setInterpolationLinearVelocity(btVector3(0, 0, 0));
-    b->setInterpolationAngularVelocity(btVector3(0, 0, 0));
+    b->setLinearVelocity(btVector3(p[7], p[8], p[9]));
+    b->setAngularVelocity(btVector3(p[10], p[11], p[12]));
+    b->setInterpolationLinearVelocity(btVector3(p[7], p[8], p[9]));
+    b->setInterpolationAngularVelocity(btVector3(p[10], p[11], p[12]));
     b->activate(true);
   }
 }
@@ -133,9 +140,13 @@ double evaluateOne(const std::vector<double>& x, double roll, int startIndex = -
   o.speed = startIndex >= 0 && startIndex % 2 == 0 ? 0.0 : gGoalSpeed;
   sim::setUpWalk(sim, o);
   const gait::Lying lying = gLying == "back" ? gait::Lying::OnBack : gLying == "front" ? gait::Lying::OnFront : gait::Lying::OnSide;
-  for (gait::Lying l : {gait::Lying::OnBack, gait::Lying::OnFront, gait::Lying::OnSide})
-    sim.controller(0).setGetUpRoutine(l, l == lying ? gait::GetUpRoutine{keys.data(), gKeys, lying == gait::Lying::OnSide}
-                                                    : gait::GetUpRoutine{});
+  for (gait::Lying l : {gait::Lying::OnBack, gait::Lying::OnFront, gait::Lying::OnSide}) {
+    const bool bySide = l == gait::Lying::OnSide;
+    const std::vector<gait::GetUpKey>& other = gOthers[static_cast<int>(l)];
+    sim.controller(0).setGetUpRoutine(l, l == lying ? gait::GetUpRoutine{keys.data(), gKeys, bySide}
+                                         : gWhole ? gait::GetUpRoutine{other.data(), static_cast<int>(other.size()), bySide}
+                                                  : gait::GetUpRoutine{});
+  }
   if (startIndex >= 0) placeAt(sim, gStarts[startIndex]);
   else layDown(sim, roll);
   const int steps = static_cast<int>((gHorizon > 0 ? gHorizon : 0.6 + total + kHold) / physics::kFixedStep);
@@ -147,7 +158,7 @@ double evaluateOne(const std::vector<double>& x, double roll, int startIndex = -
     const double up = (st.orientation * Eigen::Vector3d::UnitY()).y();
     const double forward = (st.orientation * Eigen::Vector3d::UnitZ()).y();
     const double h = st.position.y();
-    const double v = lying == gait::Lying::OnBack
+    const double v = lying == gait::Lying::OnBack || gWhole
                          ? std::min(1.0, h / 1.16) * std::max(0.0, up)
                          : std::max(0.0, forward);
     best = std::max(best, v);
@@ -194,6 +205,22 @@ int main(int argc, char** argv) {
   gKeys = std::max(1, std::atoi(argv[2]));
   if (argc > 8) gGoalSpeed = std::atof(argv[8]);
   if (argc > 11) gHorizon = std::atof(argv[11]);
+  if (argc > 12) {
+    gWhole = true;
+    const char* names[3] = {"back", "front", "side"};  // gait::Lying's order
+    for (int l = 0; l < 3; ++l) {
+      FILE* f = std::fopen((std::string(argv[12]) + "-" + names[l] + ".txt").c_str(), "r");
+      double v[kPerKey];
+      while (f && std::fscanf(f, "%lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
+                              &v[6], &v[7], &v[8], &v[9], &v[10], &v[11]) == kPerKey)
+        gOthers[l].push_back(keyOf(v));
+      if (f) std::fclose(f);
+      if (gOthers[l].empty()) {
+        std::fprintf(stderr, "%s-%s.txt: no keys\n", argv[12], names[l]);
+        return 2;
+      }
+    }
+  }
   if (argc > 10) {
     FILE* f = std::fopen(argv[9], "r");
     if (!f) {
@@ -208,9 +235,10 @@ int main(int argc, char** argv) {
         gStarts.emplace_back();
         continue;
       }
-      std::array<double, 7> p{};
-      if (!gStarts.empty() && std::sscanf(line, "%lf %lf %lf %lf %lf %lf %lf", &p[0], &p[1], &p[2], &p[3], &p[4], &p[5], &p[6]) == 7)
-        gStarts.back().push_back(p);
+      std::array<double, 13> p{};  // position, orientation and, if given, velocities
+      const int read = std::sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf", &p[0], &p[1], &p[2], &p[3],
+                                   &p[4], &p[5], &p[6], &p[7], &p[8], &p[9], &p[10], &p[11], &p[12]);
+      if (!gStarts.empty() && read >= 7) gStarts.back().push_back(p);
     }
     std::fclose(f);
   }

@@ -8,7 +8,8 @@
 // them up onto its feet, the kip-up of gymnasts and martial artists. So the body first gets onto
 // its back. What the legs do is a routine of keyframes (get_up_two_legs.h), one per way it lies:
 //   - on its back (the torso's forward axis more than 37° above the horizontal): the kip-up;
-//   - on its front: a roll onto its back;
+//   - on its front, or face down with its hips raised over folded legs (the torso's up axis
+//     pointing down), a roll onto its back over its head;
 //   - on a side: a roll onto its back, the legs named by the side nearer the ground, so that one
 //     routine serves both sides;
 //   - sitting or otherwise upright, none: the legs relax, and it lies back.
@@ -18,11 +19,14 @@
 // walk, which steps to catch the landing and starts from rest, as from a stop, towards the goal:
 // at goal 0 it then comes to a stand (standing.cpp).
 //
-// The keyframes were found by CMA-ES (Hansen 2016) from the body laid down still on its back,
-// front or left side, rolled up to 10° either way about its long axis, scored by how high and
-// upright its torso stood at the end (the rolls: how squarely it lay on its back). The controller
-// notes (§79) give the search, the probe that repeats it (native/probes/getup_search.cpp) and what
-// the get-up gets up from.
+// The keyframes were found by CMA-ES (Hansen 2016). First from the body laid down still on its
+// back, front or left side, rolled up to 10° either way about its long axis, scored by how high
+// and upright its torso stood at the end (the rolls: how squarely it lay on its back). Then the
+// kip-up and the roll from the front again, from 138 moments at which the box-hit trial's throws
+// knocked it over (its bodies' states at the fall), each run as the whole get-up runs for the 10 s
+// the benchmark watches, scored by how high and upright it stood at the end. The controller notes
+// (§79, §80) give the searches, the probes that repeat them (native/probes/getup_search.cpp,
+// getup_log.cpp) and what the get-up gets up from.
 #include <algorithm>
 #include <cmath>
 
@@ -43,6 +47,7 @@ constexpr double kStillTime = 0.2;  // s
 constexpr double kStillChord = 0.2;
 constexpr double kOnBack = 0.6, kOnFront = -0.6;  // the forward axis's height, on its back / front
 constexpr double kUpright = 0.5;                  // the up axis's height above which it is not lying
+constexpr double kHeadDown = -0.5;  // the up axis's height below which it lies face down, hips raised
 constexpr double kHandOverUp = 0.9, kHandOverHeight = 0.8;  // up axis's height; torso's centre, m
 
 // The PDs' gains at gain 1 (N·m/rad, N·m·s/rad). The foot's are small: a 1 kg foot's PD
@@ -53,22 +58,22 @@ constexpr double kHipKp = 800, kHipKd = 40, kKneeKp = 500, kKneeKd = 25, kFootKp
 constexpr GetUpKey kRelaxed = {1.0, 0.5, {0, 0}, {0.2, 0.2}, {0, 0}, {0, 0}, {0, 0}};
 
 // The routines: seconds, gain, then per leg hip, knee, ankle, twist, outwards (get_up_two_legs.h).
-// From its back, the kip-up: the legs fold (0.18 s), swing up over the body nearly straight
-// (1.2 s), are whipped down with the knees folding (0.19 s, stiff), and reach for the ground.
+// From its back, the kip-up: the legs fold (0.5 s), swing up over the body (1.3 s), are whipped
+// down with the knees folding (0.22 s, stiff), and reach for the ground.
 constexpr GetUpKey kKipUp[] = {
-    {0.41069, 0.30072, {1.52508, 0.75938}, {1.12381, 1.51509}, {-0.54270, -0.61750}, {0, 0}, {0, 0}},
-    {1.28762, 0.36597, {1.69627, 1.89959}, {0.09823, 0.79673}, {0.00975, -0.60028}, {0, 0}, {0, 0}},
-    {0.22283, 1.60421, {-0.39122, 0.54494}, {2.36948, 1.28686}, {-0.36956, 0.50371}, {0, 0}, {0, 0}},
-    {1.19478, 0.34634, {0.74714, 1.16569}, {0.65294, 1.06272}, {-0.58149, -0.74247}, {0, 0}, {0, 0}},
-    {0.50421, 0.38287, {1.89814, -0.54670}, {1.58953, 0.73001}, {-0.76078, 0.72275}, {0, 0}, {0, 0}},
+    {0.51390, 0.36351, {1.38336, 0.84955}, {1.16965, 1.33758}, {-0.36703, -0.56106}, {0, 0}, {0, 0}},
+    {1.26646, 0.46492, {1.55780, 1.92133}, {0.24862, 0.55179}, {0.13222, -0.60010}, {0, 0}, {0, 0}},
+    {0.22422, 1.43393, {-0.26991, 0.55716}, {2.33424, 1.53945}, {-0.29144, 0.47436}, {0, 0}, {0, 0}},
+    {1.21821, 0.37417, {0.70500, 1.08010}, {0.54527, 0.99357}, {-0.59172, -0.87561}, {0, 0}, {0, 0}},
+    {0.33175, 0.40007, {1.70398, -0.53312}, {1.60785, 0.95000}, {-0.85207, 0.77221}, {0, 0}, {0, 0}},
 };
 // From its front: one leg swung forwards and the other folded, then both tucked, which tips the
 // body over its head onto its back.
 constexpr GetUpKey kRollFromFront[] = {
-    {0.19972, 0.97046, {0.38705, -0.54439}, {0.08976, 2.25769}, {-0.80417, 0.35138}, {0, 0}, {0, 0}},
-    {0.56123, 0.55989, {0.04218, 1.71184}, {1.34068, 0.58674}, {0.05107, -0.75796}, {0, 0}, {0, 0}},
-    {1.07337, 1.85514, {1.99481, -0.69416}, {0.20476, 0.75931}, {-0.57636, 0.53755}, {0, 0}, {0, 0}},
-    {0.21160, 0.60387, {0.76252, 0.74826}, {2.21753, 2.05766}, {0.41265, 0.04021}, {0, 0}, {0, 0}},
+    {0.30837, 1.16767, {0.34239, -0.44373}, {0.22427, 2.37816}, {-0.85401, 0.42337}, {0, 0}, {0, 0}},
+    {0.43581, 0.72337, {0.16094, 1.54986}, {1.26059, 0.84806}, {-0.00490, -0.61637}, {0, 0}, {0, 0}},
+    {0.99039, 1.98635, {1.97415, -0.68462}, {0.14557, 0.66015}, {-0.65486, 0.29668}, {0, 0}, {0, 0}},
+    {0.22822, 0.33044, {0.96313, 0.62971}, {2.38673, 1.81828}, {0.46548, 0.16224}, {0, 0}, {0, 0}},
 };
 // From a side ([0] the lower leg): the legs scissor and fold, rolling the body onto its back.
 constexpr GetUpKey kRollFromSide[] = {
@@ -125,7 +130,7 @@ void Controller::getUpOnTwoLegs(const CharacterState& s, double dt, Vector3d* to
     }
     if (still) {
       if (forward.y() > kOnBack) lying_ = static_cast<int>(Lying::OnBack);
-      else if (forward.y() < kOnFront) lying_ = static_cast<int>(Lying::OnFront);
+      else if (forward.y() < kOnFront || up.y() < kHeadDown) lying_ = static_cast<int>(Lying::OnFront);
       else if (up.y() < kUpright) lying_ = static_cast<int>(Lying::OnSide);
       if (lying_ >= 0 && getUpRoutines_[lying_].count == 0) lying_ = -1;
       routineSteps_ = 0;

@@ -26,7 +26,7 @@ struct GetUpRoutine {
 enum class Lying { OnBack, OnFront, OnSide };
 
 // The routines the biped was tuned with (gait/get_up_two_legs.cpp): from its back a kip-up onto
-// its feet; from its front or a side a roll onto its back.
+// its feet; from its front (or face down, hips raised) or a side a roll onto its back.
 GetUpRoutine defaultGetUpRoutine(Lying lying);
 
 }  // namespace gaitlab::gait

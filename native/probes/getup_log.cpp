@@ -3,6 +3,11 @@
 // SECONDS: when the controller noticed the fall, when it was back on its feet, and each leg
 // frame's roll as it got up (docs/controller-notes.md, "Getting up").
 //
+// SECONDS count from the throw (the walking benchmark's get-up watch counts from the fall). VERBOSE
+// 1 prints each fall every 0.25 s; 2 the landing, every 0.05 s for 3 s after it is up (centre of
+// mass, torso, feet); 3 how it lies, every 0.25 s (D down or u up, then the heights of the torso's
+// forward and up axes).
+//
 // With CAPTURE_PREFIX, each fall's first moment lying still on its back, front and side (as the
 // get-up judges them, gait/get_up_two_legs.cpp: where its routines start) is appended to
 // PREFIX-back.txt, -front.txt or -side.txt, every body's position and orientation, one line a

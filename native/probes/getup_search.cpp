@@ -48,7 +48,8 @@ double gGoalSpeed = 0.0;
 bool gVerbose = false;
 constexpr double kHold = 4.0;  // s after the routine's keys
 double gHorizon = 0;           // s a run lasts, if not 0
-// Starts from real falls (STARTS_FILE): per start, every body's position and orientation.
+// Starts from real falls (STARTS_FILE): per start, every body's position, orientation and
+// velocities (zero where the file gives none).
 std::vector<std::vector<std::array<double, 13>>> gStarts;
 // The whole get-up (OTHERS_PREFIX): the routines not searched, from PREFIX-back.txt, -front.txt and
 // -side.txt; every run is then scored on how the torso stands, whatever the routine searched.
@@ -109,7 +110,7 @@ void layDown(sim::Simulation& sim, double roll) {
   }
 }
 
-// Puts every body where a start from a real fall had it, at rest.
+// Puts every body where a start from a real fall had it, moving as it was.
 void placeAt(sim::Simulation& sim, const std::vector<std::array<double, 13>>& start) {
   physics::Character& c = sim.character(0);
   for (int k = 0; k < c.segmentCount() && k < static_cast<int>(start.size()); ++k) {

@@ -103,11 +103,11 @@ void Controller::getUpOnTwoLegs(const CharacterState& s, double dt, Vector3d* to
   const Vector3d up = torso.orientation * Vector3d::UnitY(), forward = torso.orientation * Vector3d::UnitZ();
   const double height = torso.position.y() - s.ground.at(torso.position.x(), torso.position.z());
   if (lying_ == static_cast<int>(Lying::OnBack) && up.y() > kHandOverUp && height > kHandOverHeight) {
-    // The top of a kip-up: the walk takes over, stepping from rest. The body is still rising and
-    // moving, and the stand's planted feet (standing.cpp) did not hold that landing: at goal 0,
-    // 60 of 133 falls stood at the end handed over to them, 116 stepping. Walking on at once at the
-    // goal the fall interrupted stood 67; from a desired speed of 0, ramped up as from any stop,
-    // 87 (controller-notes, "The biped gets up"). The higher foot steps first.
+    // The top of a kip-up: the walk takes over, stepping from rest, the higher foot first. The
+    // body is still rising and moving, and the stand's planted feet (standing.cpp) did not hold
+    // that landing: of 133 box-hit falls at goal 0, 60 stood at the end of the watch handed to
+    // them, 116 stepping. At a goal of 0.5 m/s, walking on at once at the goal stood 67, from a
+    // desired speed of 0 ramped up as after a stop 87 (controller-notes §80).
     int first = 0;
     for (size_t l = 1; l < m_.legs.size(); ++l)
       if (s.segments[m_.legs[l].foot].position.y() > s.segments[m_.legs[first].foot].position.y()) first = static_cast<int>(l);

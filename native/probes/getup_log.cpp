@@ -39,6 +39,21 @@ double rollOf(const physics::SegmentState& s) {
   return std::atan2(-left.y(), up.y()) * 180.0 / gait::kPi;
 }
 
+// One start for the get-up search: a "start SEED THROW" line, then per body its position and
+// orientation (x y z w), and with `velocities` its linear and angular velocity.
+void writeStart(FILE* f, const physics::Character& c, uint32_t seed, int throwIndex, bool velocities) {
+  std::fprintf(f, "start %u %d\n", seed, throwIndex);
+  for (int k = 0; k < c.segmentCount(); ++k) {
+    const physics::SegmentState b = c.segmentState(k);
+    std::fprintf(f, "%.6f %.6f %.6f %.6f %.6f %.6f %.6f", b.position.x(), b.position.y(), b.position.z(), b.orientation.x(),
+                 b.orientation.y(), b.orientation.z(), b.orientation.w());
+    if (velocities)
+      std::fprintf(f, " %.6f %.6f %.6f %.6f %.6f %.6f", b.linearVelocity.x(), b.linearVelocity.y(), b.linearVelocity.z(),
+                   b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z());
+    std::fprintf(f, "\n");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -99,16 +114,7 @@ int main(int argc, char** argv) {
       if (k == steps - static_cast<int>(std::lround(3.0 / physics::kFixedStep))) lastLeg = sim.character(0).segmentState(0).position;
       if (fellAt < 0 && sim::hasFallen(sim, 0)) {
         fellAt = sim.time() - thrown;
-        if (capture[3]) {  // the moment of the fall, with every body's velocities
-          std::fprintf(capture[3], "start %d %d\n", o.seed, t);
-          for (int q = 0; q < sim.character(0).segmentCount(); ++q) {
-            const physics::SegmentState sq = sim.character(0).segmentState(q);
-            std::fprintf(capture[3], "%.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f\n", sq.position.x(),
-                         sq.position.y(), sq.position.z(), sq.orientation.x(), sq.orientation.y(), sq.orientation.z(),
-                         sq.orientation.w(), sq.linearVelocity.x(), sq.linearVelocity.y(), sq.linearVelocity.z(),
-                         sq.angularVelocity.x(), sq.angularVelocity.y(), sq.angularVelocity.z());
-          }
-        }
+        if (capture[3]) writeStart(capture[3], sim.character(0), o.seed, t, true);  // the moment of the fall
       }
       const bool down = sim.controller(0).down();
       if (down && downAt < 0) downAt = sim.time() - thrown;
@@ -119,12 +125,7 @@ int main(int argc, char** argv) {
         const int lying = fw.y() > 0.6 ? 0 : fw.y() < -0.6 ? 1 : upAxis.y() < 0.5 ? 2 : -1;  // back, front, side
         if (lying >= 0 && !captured[lying] && (fw - lastForward).norm() < 0.2 && (upAxis - lastUp).norm() < 0.2) {
           captured[lying] = true;
-          std::fprintf(capture[lying], "start %d %d\n", o.seed, t);
-          for (int q = 0; q < sim.character(0).segmentCount(); ++q) {
-            const physics::SegmentState sq = sim.character(0).segmentState(q);
-            std::fprintf(capture[lying], "%.6f %.6f %.6f %.6f %.6f %.6f %.6f\n", sq.position.x(), sq.position.y(), sq.position.z(),
-                         sq.orientation.x(), sq.orientation.y(), sq.orientation.z(), sq.orientation.w());
-          }
+          writeStart(capture[lying], sim.character(0), o.seed, t, false);
         }
         lastForward = fw;
         lastUp = upAxis;

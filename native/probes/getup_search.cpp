@@ -72,6 +72,19 @@ gait::GetUpKey keyOf(const double* x) {
   return gait::GetUpKey{x[0], x[1], {x[2], x[3]}, {x[4], x[5]}, {x[6], x[7]}, {x[8], x[9]}, {x[10], x[11]}};
 }
 
+// Moves one body to `t` with velocities v and w, as if it had been there (the interpolation and
+// the motion state too, which the render and the next step read).
+void place(btRigidBody* b, const btTransform& t, const btVector3& v, const btVector3& w) {
+  b->setWorldTransform(t);
+  b->setInterpolationWorldTransform(t);
+  if (b->getMotionState()) b->getMotionState()->setWorldTransform(t);
+  b->setLinearVelocity(v);
+  b->setAngularVelocity(w);
+  b->setInterpolationLinearVelocity(v);
+  b->setInterpolationAngularVelocity(w);
+  b->activate(true);
+}
+
 // The biped, standing as spawned, turned as a rigid whole to lie on its back, front or left
 // side, rolled by `roll` about its long axis, and lowered onto the ground, at rest.
 void layDown(sim::Simulation& sim, double roll) {
@@ -96,17 +109,9 @@ void layDown(sim::Simulation& sim, double roll) {
     lowest = std::min(lowest, static_cast<double>(low.y()));
   }
   for (int k = 0; k < c.segmentCount(); ++k) {
-    btRigidBody* b = c.body(k);
-    btTransform t = b->getWorldTransform();
+    btTransform t = c.body(k)->getWorldTransform();
     t.setOrigin(t.getOrigin() + btVector3(0, 0.01 - lowest, 0));
-    b->setWorldTransform(t);
-    b->setInterpolationWorldTransform(t);
-    if (b->getMotionState()) b->getMotionState()->setWorldTransform(t);
-    b->setLinearVelocity(btVector3(0, 0, 0));
-    b->setAngularVelocity(btVector3(0, 0, 0));
-    b->setInterpolationLinearVelocity(btVector3(0, 0, 0));
-    b->setInterpolationAngularVelocity(btVector3(0, 0, 0));
-    b->activate(true);
+    place(c.body(k), t, btVector3(0, 0, 0), btVector3(0, 0, 0));
   }
 }
 
@@ -114,17 +119,9 @@ void layDown(sim::Simulation& sim, double roll) {
 void placeAt(sim::Simulation& sim, const std::vector<std::array<double, 13>>& start) {
   physics::Character& c = sim.character(0);
   for (int k = 0; k < c.segmentCount() && k < static_cast<int>(start.size()); ++k) {
-    btRigidBody* b = c.body(k);
     const std::array<double, 13>& p = start[k];
-    const btTransform t(btQuaternion(p[3], p[4], p[5], p[6]), btVector3(p[0], p[1] + 0.005, p[2]));
-    b->setWorldTransform(t);
-    b->setInterpolationWorldTransform(t);
-    if (b->getMotionState()) b->getMotionState()->setWorldTransform(t);
-    b->setLinearVelocity(btVector3(p[7], p[8], p[9]));
-    b->setAngularVelocity(btVector3(p[10], p[11], p[12]));
-    b->setInterpolationLinearVelocity(btVector3(p[7], p[8], p[9]));
-    b->setInterpolationAngularVelocity(btVector3(p[10], p[11], p[12]));
-    b->activate(true);
+    place(c.body(k), btTransform(btQuaternion(p[3], p[4], p[5], p[6]), btVector3(p[0], p[1] + 0.005, p[2])),
+          btVector3(p[7], p[8], p[9]), btVector3(p[10], p[11], p[12]));
   }
 }
 

@@ -111,7 +111,7 @@ void Controller::getUpOnTwoLegs(const CharacterState& s, double dt, Vector3d* to
     int first = 0;
     for (size_t l = 1; l < m_.legs.size(); ++l)
       if (s.segments[m_.legs[l].foot].position.y() > s.segments[m_.legs[first].foot].position.y()) first = static_cast<int>(l);
-    player_.hold();
+    player_.hold();  // release() restarts a held gait player's cycle at `first`'s lift-off
     release(s, first);
     desiredVelocity_.setZero();
     speedTrim_ = 0;

@@ -35,6 +35,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include "gait/heading.h"
+#include "optimize/cma_es.h"
 #include "sim/simulation.h"
 #include "sim/walk_trial.h"
 
@@ -269,54 +270,27 @@ int main(int argc, char** argv) {
       return 0;
     }
   }
-  // CMA-ES (Hansen 2016, the tutorial's defaults).
-  const int lambda = argc > 7 ? std::max(4, std::atoi(argv[7])) : 24, mu = lambda / 2;
-  Eigen::VectorXd w(mu);
-  for (int i = 0; i < mu; ++i) w[i] = std::log(mu + 0.5) - std::log(i + 1.0);
-  w /= w.sum();
-  const double mueff = 1.0 / w.squaredNorm();
-  const double cc = (4 + mueff / n) / (n + 4 + 2 * mueff / n), cs = (mueff + 2) / (n + mueff + 5);
-  const double c1 = 2 / ((n + 1.3) * (n + 1.3) + mueff);
-  const double cmu = std::min(1 - c1, 2 * (mueff - 2 + 1 / mueff) / ((n + 2) * (n + 2) + mueff));
-  const double damps = 1 + 2 * std::max(0.0, std::sqrt((mueff - 1) / (n + 1)) - 1) + cs;
-  const double chiN = std::sqrt(n) * (1 - 1.0 / (4 * n) + 1.0 / (21.0 * n * n));
-  double sigma = argc > 6 ? std::atof(argv[6]) : 0.25;
-  Eigen::VectorXd pc = Eigen::VectorXd::Zero(n), ps = Eigen::VectorXd::Zero(n);
-  Eigen::MatrixXd C = Eigen::MatrixXd::Identity(n, n), B = C;
-  Eigen::VectorXd D = Eigen::VectorXd::Ones(n);
+  // CMA-ES (optimize/cma_es.h) in the unit box of the keys' ranges, maximising the score.
+  const int lambda = argc > 7 ? std::max(4, std::atoi(argv[7])) : 24;
+  optimize::CmaEs cma(mean, argc > 6 ? std::atof(argv[6]) : 0.25, lambda, /*maxSigma=*/1.0);
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;
-  double bestEver = -1;
+  double bestEver = -1, generationBest = -1;
   std::vector<double> bestX;
   for (int g = 0; g < generations; ++g) {
-    std::vector<Eigen::VectorXd> zs(lambda), ys(lambda);
-    std::vector<std::pair<double, int>> f(lambda);
+    const std::vector<Eigen::VectorXd>& zs = cma.ask([&] { return normal(rng); });
+    std::vector<double> costs(lambda);
+    generationBest = -1;
     for (int k = 0; k < lambda; ++k) {
-      Eigen::VectorXd z(n);
-      for (int i = 0; i < n; ++i) z[i] = normal(rng);
-      ys[k] = B * D.asDiagonal() * z;
-      zs[k] = mean + sigma * ys[k];
-      f[k] = {-evaluate(decode(zs[k])), k};
+      const std::vector<double> x = decode(zs[k]);
+      const double score = evaluate(x);
+      costs[k] = -score;
+      generationBest = std::max(generationBest, score);
+      if (score > bestEver) { bestEver = score; bestX = x; }
     }
-    std::sort(f.begin(), f.end());
-    if (-f[0].first > bestEver) { bestEver = -f[0].first; bestX = decode(zs[f[0].second]); }
-    Eigen::VectorXd old = mean;
-    mean.setZero();
-    for (int i = 0; i < mu; ++i) mean += w[i] * zs[f[i].second];
-    const Eigen::VectorXd step = (mean - old) / sigma;
-    const Eigen::MatrixXd invSqrtC = B * D.cwiseInverse().asDiagonal() * B.transpose();
-    ps = (1 - cs) * ps + std::sqrt(cs * (2 - cs) * mueff) * invSqrtC * step;
-    const bool hsig = ps.norm() / std::sqrt(1 - std::pow(1 - cs, 2 * (g + 1))) / chiN < 1.4 + 2.0 / (n + 1);
-    pc = (1 - cc) * pc + (hsig ? std::sqrt(cc * (2 - cc) * mueff) : 0.0) * step;
-    Eigen::MatrixXd rankMu = Eigen::MatrixXd::Zero(n, n);
-    for (int i = 0; i < mu; ++i) { const Eigen::VectorXd y = (zs[f[i].second] - old) / sigma; rankMu += w[i] * y * y.transpose(); }
-    C = (1 - c1 - cmu) * C + c1 * (pc * pc.transpose() + (hsig ? 0 : cc * (2 - cc)) * C) + cmu * rankMu;
-    sigma *= std::exp((cs / damps) * (ps.norm() / chiN - 1));
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(C);
-    B = es.eigenvectors();
-    D = es.eigenvalues().cwiseMax(1e-20).cwiseSqrt();
+    cma.tell(costs);
     if (g % 10 == 0 || g == generations - 1) {
-      std::fprintf(stderr, "gen %d best %.4f gen-best %.4f sigma %.3f\n", g, bestEver, -f[0].first, sigma);
+      std::fprintf(stderr, "gen %d best %.4f gen-best %.4f sigma %.3f\n", g, bestEver, generationBest, cma.sigma());
       FILE* out = std::fopen(("/tmp/getup-" + gLying + "-" + std::to_string(seed) + ".txt").c_str(), "w");
       for (int i = 0; i < n; ++i) std::fprintf(out, "%.5f%s", bestX[i], i % kPerKey == kPerKey - 1 ? "\n" : " ");
       std::fclose(out);

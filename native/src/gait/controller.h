@@ -4,6 +4,7 @@
 // Bullet and run for many characters in parallel (no heap allocation in update()).
 #pragma once
 #include <Eigen/Dense>
+#include <optional>
 #include <vector>
 
 #include "body/morphology.h"
@@ -82,6 +83,7 @@ class Controller {
   // The routine a body on two legs gets up by when it lies so (gait/get_up_two_legs.h; the
   // defaults unless set: the get-up search tries others). The keys must outlive the controller.
   void setGetUpRoutine(Lying lying, const GetUpRoutine& routine) { getUpRoutines_[static_cast<int>(lying)] = routine; }
+  const GetUpRoutine& getUpRoutine(Lying lying) const { return getUpRoutines_[static_cast<int>(lying)]; }
 
  private:
   struct LegGeometry {
@@ -221,11 +223,11 @@ class Controller {
   bool frameUp_[kMaxLegFrames] = {};
   int risenSteps_ = 0;
   int onFeetSteps_ = 0;
-  // Getting up on two legs: the routine running (a Lying, −1 none: waiting to lie still), its
-  // steps, and the stillness test's clock and the torso's axes at its last sample.
+  // Getting up on two legs: the way it lies whose routine is running (none: waiting to lie still),
+  // the routine's steps, and the stillness test's clock and the torso's axes at its last sample.
   GetUpRoutine getUpRoutines_[3] = {defaultGetUpRoutine(Lying::OnBack), defaultGetUpRoutine(Lying::OnFront),
                                     defaultGetUpRoutine(Lying::OnSide)};
-  int lying_ = -1;
+  std::optional<Lying> lying_;
   int routineSteps_ = 0;
   int stillSteps_ = 0;
   Eigen::Vector3d stillForward_ = Eigen::Vector3d::Zero(), stillUp_ = Eigen::Vector3d::Zero();

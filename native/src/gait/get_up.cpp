@@ -89,7 +89,7 @@ bool Controller::getsUp(const CharacterState& s, double dt, Vector3d* torques) {
     onFeetSteps_ = 0;
     risenSteps_ = 0;
     for (bool& up : frameUp_) up = false;
-    lying_ = -1;
+    lying_.reset();
     stillSteps_ = 0;
     stillForward_ = stillUp_ = Vector3d::Zero();
   }

@@ -102,7 +102,7 @@ void Controller::getUpOnTwoLegs(const CharacterState& s, double dt, Vector3d* to
   const BodyState& torso = s.segments[m_.legFrames[0]];
   const Vector3d up = torso.orientation * Vector3d::UnitY(), forward = torso.orientation * Vector3d::UnitZ();
   const double height = torso.position.y() - s.ground.at(torso.position.x(), torso.position.z());
-  if (lying_ == static_cast<int>(Lying::OnBack) && up.y() > kHandOverUp && height > kHandOverHeight) {
+  if (lying_ == Lying::OnBack && up.y() > kHandOverUp && height > kHandOverHeight) {
     // The top of a kip-up: the walk takes over, stepping from rest, the higher foot first. The
     // body is still rising and moving, and the stand's planted feet (standing.cpp) did not hold
     // that landing: of 133 box-hit falls at goal 0, 60 stood at the end of the watch handed to
@@ -117,10 +117,10 @@ void Controller::getUpOnTwoLegs(const CharacterState& s, double dt, Vector3d* to
     speedTrim_ = 0;
     meanSpeedError_ = 0;
     downSteps_ = 0;
-    lying_ = -1;
+    lying_.reset();
     return;
   }
-  if (lying_ < 0) {
+  if (!lying_) {
     bool still = false;
     if (++stillSteps_ * dt >= kStillTime) {
       still = (forward - stillForward_).norm() < kStillChord && (up - stillUp_).norm() < kStillChord;
@@ -129,23 +129,23 @@ void Controller::getUpOnTwoLegs(const CharacterState& s, double dt, Vector3d* to
       stillSteps_ = 0;
     }
     if (still) {
-      if (forward.y() > kOnBack) lying_ = static_cast<int>(Lying::OnBack);
-      else if (forward.y() < kOnFront || up.y() < kHeadDown) lying_ = static_cast<int>(Lying::OnFront);
-      else if (up.y() < kUpright) lying_ = static_cast<int>(Lying::OnSide);
-      if (lying_ >= 0 && getUpRoutines_[lying_].count == 0) lying_ = -1;
+      if (forward.y() > kOnBack) lying_ = Lying::OnBack;
+      else if (forward.y() < kOnFront || up.y() < kHeadDown) lying_ = Lying::OnFront;
+      else if (up.y() < kUpright) lying_ = Lying::OnSide;
+      if (lying_ && getUpRoutine(*lying_).count == 0) lying_.reset();
       routineSteps_ = 0;
     }
   }
   const GetUpKey* key = &kRelaxed;
   bool bySide = false;
-  if (lying_ >= 0) {
-    const GetUpRoutine& r = getUpRoutines_[lying_];
+  if (lying_) {
+    const GetUpRoutine& r = getUpRoutine(*lying_);
     const double t = (routineSteps_++) * dt;
     int k = 0;
     double start = 0;
     while (k < r.count && t > start + r.keys[k].seconds) start += r.keys[k++].seconds;
     if (k == r.count) {  // done: the way it lies picks again once it is still
-      lying_ = -1;
+      lying_.reset();
       stillSteps_ = 0;
     } else {
       key = &r.keys[k];

@@ -1,5 +1,7 @@
 #include "optimize/optimizer.h"
 
+#include "optimize/cma_es.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <atomic>
@@ -170,104 +172,50 @@ class Greedy : public Optimizer {
   double incumbent_ = std::numeric_limits<double>::infinity();
 };
 
-// ---- CMA-ES (Hansen, "The CMA Evolution Strategy: A Tutorial", 2016) ------------------------
+// ---- CMA-ES (optimize/cma_es.h) ------------------------------------------------------------
 // Works in normalised coordinates u = (x − lo)/(hi − lo) ∈ [0, 1]ⁿ. A sample outside the box is
 // evaluated at its projection onto the box, and ranked with the squared distance to it added,
 // so the distribution is drawn back inside (a common boundary handling).
-class CmaEs : public Optimizer {
+class CmaEsSearch : public Optimizer {
  public:
-  CmaEs(const SearchOptions& o, const gait::GaitParams& start)
-      : Optimizer(o, start), n_(static_cast<int>(lo_.size())), lambda_(std::max(2, o.candidates)) {
-    const int mu = lambda_ / 2;
-    weights_.resize(mu);
-    for (int i = 0; i < mu; ++i) weights_[i] = std::log(mu + 0.5) - std::log(i + 1.0);
-    weights_ /= weights_.sum();
-    muEff_ = 1.0 / weights_.squaredNorm();
-    const double n = n_;
-    cSigma_ = (muEff_ + 2) / (n + muEff_ + 5);
-    dSigma_ = 1 + 2 * std::max(0.0, std::sqrt((muEff_ - 1) / (n + 1)) - 1) + cSigma_;
-    cc_ = (4 + muEff_ / n) / (n + 4 + 2 * muEff_ / n);
-    c1_ = 2 / ((n + 1.3) * (n + 1.3) + muEff_);
-    cMu_ = std::min(1 - c1_, 2 * (muEff_ - 2 + 1 / muEff_) / ((n + 2) * (n + 2) + muEff_));
-    chiN_ = std::sqrt(n) * (1 - 1 / (4 * n) + 1 / (21 * n * n));
-    mean_.resize(n_);
-    for (int i = 0; i < n_; ++i) mean_[i] = (bestVector_[i] - lo_[i]) / (hi_[i] - lo_[i]);
-    sigma_ = o.cmaSigma;
-    C_ = Eigen::MatrixXd::Identity(n_, n_);
-    B_ = C_;
-    D_ = Eigen::VectorXd::Ones(n_);
-    pSigma_ = pc_ = Eigen::VectorXd::Zero(n_);
-  }
+  CmaEsSearch(const SearchOptions& o, const gait::GaitParams& start)
+      : Optimizer(o, start), cma_(normalised(bestVector_), o.cmaSigma, std::max(2, o.candidates), /*maxSigma=*/1.0) {}
 
  protected:
   std::vector<std::vector<double>> propose() override {
-    samples_.assign(lambda_, Eigen::VectorXd(n_));
-    std::vector<std::vector<double>> points(lambda_, std::vector<double>(n_));
-    for (int k = 0; k < lambda_; ++k) {
-      Eigen::VectorXd z(n_);
-      for (int i = 0; i < n_; ++i) z[i] = rng_.normal();
-      samples_[k] = mean_ + sigma_ * (B_ * D_.asDiagonal() * z);
-      for (int i = 0; i < n_; ++i)
-        points[k][i] = lo_[i] + std::clamp(samples_[k][i], 0.0, 1.0) * (hi_[i] - lo_[i]);
-    }
+    const std::vector<Eigen::VectorXd>& samples = cma_.ask([this] { return rng_.normal(); });
+    std::vector<std::vector<double>> points(samples.size(), std::vector<double>(lo_.size()));
+    for (size_t k = 0; k < samples.size(); ++k)
+      for (size_t i = 0; i < lo_.size(); ++i)
+        points[k][i] = lo_[i] + std::clamp(samples[k][i], 0.0, 1.0) * (hi_[i] - lo_[i]);
+    samples_.assign(samples.begin(), samples.end());
     return points;
   }
 
   void tell(const std::vector<std::vector<double>>&, const std::vector<ObjectiveTerms>& results) override {
-    std::vector<double> f(lambda_);
-    for (int k = 0; k < lambda_; ++k) {
+    std::vector<double> costs(results.size());
+    for (size_t k = 0; k < results.size(); ++k) {
       const Eigen::VectorXd inside = samples_[k].cwiseMax(0.0).cwiseMin(1.0);
-      f[k] = results[k].total + (samples_[k] - inside).squaredNorm();
+      costs[k] = results[k].total + (samples_[k] - inside).squaredNorm();
     }
-    std::vector<int> order(lambda_);
-    for (int k = 0; k < lambda_; ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return f[a] < f[b]; });
-
-    const int mu = static_cast<int>(weights_.size());
-    const Eigen::VectorXd old = mean_;
-    mean_.setZero();
-    for (int i = 0; i < mu; ++i) mean_ += weights_[i] * samples_[order[i]];
-    const Eigen::VectorXd step = (mean_ - old) / sigma_;
-
-    // C^(-1/2) = B D^(-1) Bᵀ
-    const Eigen::VectorXd whitened = B_ * (D_.cwiseInverse().asDiagonal() * (B_.transpose() * step));
-    pSigma_ = (1 - cSigma_) * pSigma_ + std::sqrt(cSigma_ * (2 - cSigma_) * muEff_) * whitened;
-    const double gens = generation_;
-    const bool hSigma = pSigma_.norm() / std::sqrt(1 - std::pow(1 - cSigma_, 2 * gens)) <
-                        (1.4 + 2 / (n_ + 1.0)) * chiN_;
-    pc_ = (1 - cc_) * pc_ + (hSigma ? std::sqrt(cc_ * (2 - cc_) * muEff_) : 0.0) * step;
-
-    Eigen::MatrixXd rankMu = Eigen::MatrixXd::Zero(n_, n_);
-    for (int i = 0; i < mu; ++i) {
-      const Eigen::VectorXd y = (samples_[order[i]] - old) / sigma_;
-      rankMu += weights_[i] * y * y.transpose();
-    }
-    C_ = (1 - c1_ - cMu_) * C_ +
-         c1_ * (pc_ * pc_.transpose() + (hSigma ? 0.0 : cc_ * (2 - cc_)) * C_) + cMu_ * rankMu;
-    sigma_ *= std::exp((cSigma_ / dSigma_) * (pSigma_.norm() / chiN_ - 1));
-    sigma_ = std::min(sigma_, 1.0);  // a step wider than the whole box means nothing
-
-    // C = B D² Bᵀ; symmetrise first so rounding cannot make the solver see an asymmetric C.
-    C_ = 0.5 * (C_ + C_.transpose());
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(C_);
-    B_ = eig.eigenvectors();
-    D_ = eig.eigenvalues().cwiseMax(1e-20).cwiseSqrt();
+    cma_.tell(costs);
   }
 
  private:
-  int n_, lambda_;
-  Eigen::VectorXd weights_;
-  double muEff_, cSigma_, dSigma_, cc_, c1_, cMu_, chiN_;
-  Eigen::VectorXd mean_, pSigma_, pc_, D_;
-  Eigen::MatrixXd C_, B_;
-  double sigma_;
-  std::vector<Eigen::VectorXd> samples_;
+  Eigen::VectorXd normalised(const std::vector<double>& x) const {
+    Eigen::VectorXd u(x.size());
+    for (size_t i = 0; i < x.size(); ++i) u[i] = (x[i] - lo_[i]) / (hi_[i] - lo_[i]);
+    return u;
+  }
+
+  CmaEs cma_;
+  std::vector<Eigen::VectorXd> samples_;  // this generation's, in unit-box coordinates (some outside it)
 };
 
 }  // namespace
 
 std::unique_ptr<Optimizer> Optimizer::create(const SearchOptions& options, const gait::GaitParams& start) {
-  if (options.method == Method::CmaEs) return std::unique_ptr<Optimizer>(new CmaEs(options, start));
+  if (options.method == Method::CmaEs) return std::unique_ptr<Optimizer>(new CmaEsSearch(options, start));
   return std::unique_ptr<Optimizer>(new Greedy(options, start));
 }
 

@@ -200,7 +200,10 @@ try {
   const dirty = execFileSync('git', ['status', '--porcelain', '--untracked-files=no', 'native', 'public/presets', 'public/creatures'], { cwd: root, encoding: 'utf8' }).trim();
   if (dirty) commit += ' + uncommitted changes';
 } catch { /* not a checkout */ }
-const stamp = { measured: new Date().toISOString(), commit, seconds };
+// Each section records the machine it was measured on: a later run of some sections merges into
+// the file (below), and the file's sections may then come from different machines.
+const machine = `${os.cpus()[0]?.model ?? 'unknown'}, ${os.cpus().length} cores`;
+const stamp = { measured: new Date().toISOString(), commit, seconds, machine };
 
 const dir = path.join(root, 'bench/results');
 const base = creatureFiles.length ? 'walking-creatures' : paramsFile ? `walking-${path.basename(paramsFile, '.json')}` : 'walking';
@@ -209,7 +212,6 @@ let report = { characters: {} };
 if (existsSync(path.join(dir, `${base}.json`))) {
   try { report = JSON.parse(readFileSync(path.join(dir, `${base}.json`), 'utf8')); } catch { /* start afresh */ }
 }
-report.machine = `${os.cpus()[0]?.model ?? 'unknown'}, ${os.cpus().length} cores`;
 report.seconds = seconds;
 report.characters ??= {};
 const hasTerrain = only.includes('criteria') ? terrainSupported() : true;
@@ -518,13 +520,21 @@ for (const character of characters) {
 
 if (paramsFile) report.params = paramsFile;
 const f2 = (x) => (x == null ? '–' : x.toFixed(2));
-const lines = [`# Walking benchmark (${report.machine}${paramsFile ? `, gait ${paramsFile}` : ''}${creatureFiles.length ? ', creature files' : ''})`, ''];
+// When and where a section was measured: its date and commit, and its machine where that is not
+// the one the whole file names.
+// (Sections measured before sections recorded their machine say so.)
+const machineOf = (x) => x.machine ?? 'machine not recorded';
+const machines = [...new Set(Object.values(report.characters).flatMap((r) => Object.values(r))
+  .filter((x) => x?.measured).map(machineOf))];
+delete report.machine;
+const when = (x) => `${x.measured.slice(0, 10)}, ${x.commit}${machines.length > 1 ? `, ${machineOf(x)}` : ''}`;
+const lines = [`# Walking benchmark (${machines.length === 1 ? machines[0] : 'sections measured on different machines, as each says'}${paramsFile ? `, gait ${paramsFile}` : ''}${creatureFiles.length ? ', creature files' : ''})`, ''];
 for (const [character, r] of Object.entries(report.characters)) {
   const { speeds: SPEEDS } = GOALS[character];
   lines.push(`## ${character}`, '');
   const c = r.criteria;
   if (c) {
-    lines.push(`### The walking criteria: ${c.all_met ? 'every criterion met' : 'criteria not all met'} (${c.seconds} s runs; ${c.measured.slice(0, 10)}, ${c.commit})`, '',
+    lines.push(`### The walking criteria: ${c.all_met ? 'every criterion met' : 'criteria not all met'} (${c.seconds} s runs; ${when(c)})`, '',
       '| criterion | met | measured |', '|---|---|---|');
     for (const k of c.checks) lines.push(`| ${k.what} | ${k.ok ? 'yes' : '**no**'} | ${k.value} |`);
     if (c.robustness) {
@@ -543,7 +553,7 @@ for (const [character, r] of Object.entries(report.characters)) {
   }
   const sw = r.sweep;
   if (sw) {
-    lines.push(`### Speed sweep (${sw.seconds} s per goal; ${sw.measured.slice(0, 10)}, ${sw.commit})`, '',
+    lines.push(`### Speed sweep (${sw.seconds} s per goal; ${when(sw)})`, '',
       `Top goal walked without a fall (every goal up to it): ${sw.top_without_fall_m_s ?? 'none'} m/s; ` +
       `goals above 0.3 m/s tracked within ±10 %: ${sw.tracked_within_10pct.length ? sw.tracked_within_10pct.join(', ') : 'none'}.`, '',
       '| goal m/s | fell | speed m/s | footfall | heading drift ° | position drift m (2nd half) | duty measured/configured | flight | stood still |',
@@ -558,21 +568,21 @@ for (const [character, r] of Object.entries(report.characters)) {
   }
   const sk = r.skills;
   if (sk?.checks) {
-    lines.push(`### Locomotion skills: ${sk.checks.every((k) => k.ok) ? 'every skill shown' : 'skills not all shown'} (from the sweep of ${sw?.measured.slice(0, 10) ?? '–'}; ${sk.measured.slice(0, 10)}, ${sk.commit})`, '',
+    lines.push(`### Locomotion skills: ${sk.checks.every((k) => k.ok) ? 'every skill shown' : 'skills not all shown'} (from the sweep of ${sw?.measured.slice(0, 10) ?? '–'}; ${when(sk)})`, '',
       '| skill | met | measured |', '|---|---|---|');
     for (const k of sk.checks) lines.push(`| ${k.what} | ${k.ok ? 'yes' : '**no**'} | ${k.value} |`);
     lines.push('');
   }
   for (const [title, rp] of [['Ramp', r.ramp], ['Ramp to the fastest speed key, the top of the steering range', r.ramp_to_fastest_key]]) {
     if (!rp) continue;
-    lines.push(`### ${title} (goal ${rp.schedule}, then ${STAND_SECONDS} s at 0; ${rp.measured.slice(0, 10)}, ${rp.commit})`, '',
+    lines.push(`### ${title} (goal ${rp.schedule}, then ${STAND_SECONDS} s at 0; ${when(rp)})`, '',
       '| criterion | met | measured |', '|---|---|---|');
     for (const k of rp.checks) lines.push(`| ${k.what} | ${k.ok ? 'yes' : '**no**'} | ${k.value} |`);
     lines.push('');
   }
   const pu = r.pushes;
   if (pu) {
-    lines.push(`### Push ladder (20 pushes at random phases per impulse, at the leg frame; ${pu.measured.slice(0, 10)}, ${pu.commit})`, '',
+    lines.push(`### Push ladder (20 pushes at random phases per impulse, at the leg frame; ${when(pu)})`, '',
       '| push | direction | goal m/s | survived every time | survived ≥ 90 % | rungs (N·s: survived/20) |', '|---|---|---|---|---|---|');
     for (const l of pu.ladders) {
       const kind = l.duration_s ? `held ${l.duration_s} s` : 'one step';
@@ -583,7 +593,7 @@ for (const [character, r] of Object.entries(report.characters)) {
   }
   const bx = r.boxes;
   if (bx) {
-    lines.push(`### Box hits (boxes thrown as the demo throws them, ${2 * bx.box_half_m} m, 8.3 kg, 14–18 m/s, at random body parts; ${bx.measured.slice(0, 10)}, ${bx.commit})`, '',
+    lines.push(`### Box hits (boxes thrown as the demo throws them, ${2 * bx.box_half_m} m, 8.3 kg, 14–18 m/s, at random body parts; ${when(bx)})`, '',
       `| goal m/s | hits (throws) | knocked over | at most 1 in 5? | got up by itself within ${bx.get_up_watch_s ?? '–'} s (median, slowest) | falls / hits by body part (render order) |`, '|---|---|---|---|---|---|');
     for (const t of bx.trials) {
       const up = typeof t.get_ups !== 'number' ? 'not watched'
@@ -595,14 +605,14 @@ for (const [character, r] of Object.entries(report.characters)) {
   }
   const st = r.starts;
   if (st) {
-    lines.push(`### Starts from rest at ${START_PHASES} gait phases (${st.seconds} s each; ${st.measured.slice(0, 10)}, ${st.commit})`, '',
+    lines.push(`### Starts from rest at ${START_PHASES} gait phases (${st.seconds} s each; ${when(st)})`, '',
       '| goal m/s | fell | at phases |', '|---|---|---|');
     for (const row of st.rows) lines.push(`| ${row.speed} | ${row.falls} of ${row.starts} | ${row.fell_at_phases.join(', ') || '–'} |`);
     lines.push('');
   }
   const tr = r.transitions;
   if (tr) {
-    lines.push(`### Gait changes in mid-stride (the goal changes between two speeds every 1–4 s, ${TRANSITION_HOLDS - 1} times per run; ${tr.measured.slice(0, 10)}, ${tr.commit})`, '',
+    lines.push(`### Gait changes in mid-stride (the goal changes between two speeds every 1–4 s, ${TRANSITION_HOLDS - 1} times per run; ${when(tr)})`, '',
       '| goal speeds m/s | runs that fell | changes of footfall pattern made | fell at s |', '|---|---|---|---|');
     for (const row of tr.rows) {
       lines.push(`| ${row.speeds.join(' ↔ ')} | ${row.falls} of ${row.runs} | ${row.gait_changes} | ` +
@@ -612,7 +622,7 @@ for (const [character, r] of Object.entries(report.characters)) {
   }
   const sx = r.switches;
   if (sx) {
-    lines.push(`### A gait pinned in mid-stride (${SWITCH_RUNS} switches per pair at ${sx.speed} m/s, at times spread over ${SWITCH_SPREAD} s; ${sx.measured.slice(0, 10)}, ${sx.commit})`, '',
+    lines.push(`### A gait pinned in mid-stride (${SWITCH_RUNS} switches per pair at ${sx.speed} m/s, at times spread over ${SWITCH_SPREAD} s; ${when(sx)})`, '',
       `| from | to | fell within ${sx.seconds_after} s of the switch | fell at s after it |`, '|---|---|---|---|');
     for (const row of sx.rows) {
       lines.push(`| ${row.from} | ${row.to} | ${row.falls} of ${row.runs - row.fell_before}${row.fell_before ? ` (${row.fell_before} fell before it)` : ''} | ` +

@@ -26,6 +26,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"wf", 0, 1000, "1", "w_f: weight of flight f_f, the share of time with no foot on the ground: a walk has none (ours)"}, s.wf);
   visit({"wk", 0, 1000, "1", "w_k: weight of speed tracking f_k, the share of a ramp episode's 2 s speed samples off the goal by more than 10 % (the walking benchmark's ramp criterion; ours)"}, s.wk);
   visit({"ws", 0, 1000, "s²/m²", "w_s: weight of speed deviation f_s, the horizontal speed against the goal speed whatever its direction: unlike f_v, not lowered by a slower turn (ours)"}, s.ws);
+  visit({"wp", 0, 1000, "1", "w_p: weight of f_p, the share of an episode held at goal 0 not standing on planted feet (the walking benchmark's standing skill; ours)"}, s.wp);
   visit({"fallPenalty", 0, 1e6, "1", "added for a fall, scaled by 1 + the share of the episode left"},
         s.fallPenalty);
   visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
@@ -148,7 +149,7 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
   lastTime_ = time;
 }
 
-ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, double ff, double fk) const {
+ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, double ff, double fk, double standing) const {
   ObjectiveTerms t;
   const double travel = (travel_ - goalTravel_) / std::max(std::abs(goalTravel_), 1.0);
   const double posture = frameSamples_ ? postureSum_ / frameSamples_ : 0.0;
@@ -160,6 +161,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
   t.ft = ft;
   t.ff = ff;
   t.fk = fk;
+  t.fp = goalSpeed_ == 0.0 && schedule_.empty() ? 1.0 - standing : 0.0;
   t.fell = fell;
   t.seconds = fell ? fallTime : lastTime_;
   if (fell) {
@@ -167,7 +169,8 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
     t.fall = settings_.fallPenalty * (1.0 + left);
   }
   t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr +
-            settings_.wt * t.ft + settings_.wf * t.ff + settings_.wk * t.fk + settings_.ws * t.fs + t.fall;
+            settings_.wt * t.ft + settings_.wf * t.ff + settings_.wk * t.fk + settings_.ws * t.fs +
+            settings_.wp * t.fp + t.fall;
   return t;
 }
 
@@ -221,7 +224,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
   };
   const sim::WalkResult r = sim::runWalk(w);
   return recorder.finish(r.fell, r.fallTime, timingDeviation(r.dutyMeasured, r.dutyConfig), r.flightFraction,
-                         trackingMisses(r.trackingSamples, r.trackingWithin));
+                         trackingMisses(r.trackingSamples, r.trackingWithin), r.standingFraction);
 }
 
 double episodeTurnRate(const ObjectiveSettings& settings, int start) {
@@ -318,6 +321,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     mean.ff += t.ff;
     mean.fk += t.fk;
     mean.fs += t.fs;
+    mean.fp += t.fp;
     mean.fall += t.fall;
     mean.total += t.total;
     mean.seconds += t.seconds;
@@ -352,7 +356,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   for (double speed : settings.speeds)
     for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed, body));
   if (episodes) {
-    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fk, &mean.fs, &mean.fall, &mean.total}) *v /= episodes;
+    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fk, &mean.fs, &mean.fp, &mean.fall, &mean.total}) *v /= episodes;
   }
   return mean;
 }

@@ -43,6 +43,13 @@
 //        counts the path's lag behind the goal heading, and a slower gait lowers that: searches
 //        of the canter's turns with f_v alone turned at the told rate by running 2.0–2.6 m/s at
 //        a goal of 3.5 (docs/controller-notes.md §62).
+//
+// and an eighth, 0 unless weighted (w_p), for episodes held at goal 0 only:
+//
+//   f_p  the share of the episode's steps not standing on planted feet (gait/standing.cpp): the
+//        walking benchmark's standing skill asks for 90 % or more. A search at goal 0 scored on
+//        falls alone (box hits, pushes) found that stepping in place falls less, and gave up the
+//        stand (docs/controller-notes.md §82).
 //        f_s keeps the speed whichever way the body goes.
 //
 // A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
@@ -84,6 +91,7 @@ struct ObjectiveSettings {
   double wf = 0.0;                                 // w_f of f_f (flight: no foot down, ours)
   double wk = 0.0;                                 // w_k of f_k (a ramp's speed tracking, ours)
   double ws = 0.0;                                 // w_s of f_s (speed whatever the direction, ours)
+  double wp = 0.0;                                 // w_p of f_p (not standing at goal 0, ours)
   double fallPenalty = 100.0;
   double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
   double warmup = 1.0;             // s before travel and velocity are measured
@@ -183,8 +191,9 @@ struct ObjectiveTerms {
   double ff = 0;          // flight: the share of the time with no foot on the ground
   double fk = 0;          // a ramp's speed samples off the goal by more than 10 %, as a share
   double fs = 0;          // (horizontal speed − goal speed)², whatever the direction
+  double fp = 0;          // at goal 0, the share of the time not standing on planted feet
   double fall = 0;        // the fall penalty, 0 if it did not fall
-  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + w_k·f_k + w_s·f_s + fall
+  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + w_k·f_k + w_s·f_s + w_p·f_p + fall
   bool fell = false;
   double seconds = 0;     // simulated
 };
@@ -210,8 +219,10 @@ class ObjectiveRecorder {
 
   // Terms over what was recorded; `fell` at `fallTime` adds the fall penalty. `ft`: the
   // episode's footfall timing deviation (timingDeviation, from the walk's duty factors); `ff`
-  // its flight share; `fk` its speed tracking's misses (trackingMisses).
-  ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0, double ff = 0.0, double fk = 0.0) const;
+  // its flight share; `fk` its speed tracking's misses (trackingMisses); `standing` the share of
+  // its steps on planted feet (counted as f_p's complement in an episode whose goal is 0).
+  ObjectiveTerms finish(bool fell, double fallTime, double ft = 0.0, double ff = 0.0, double fk = 0.0,
+                        double standing = 1.0) const;
 
   double goalHeading(double time) const { return startHeading_ + settings_.turnRate * time; }
   // A goal speed that changes: (time s, speed m/s) points (sim::scheduleAt), instead of the

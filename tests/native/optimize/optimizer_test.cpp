@@ -224,6 +224,43 @@ TEST(OptimizeObjective, FlightCountsInTheTotalByItsWeight) {
   EXPECT_NEAR(total(0, 0.1), total(0, 0.0), 1e-12);
 }
 
+// The standing term f_p (ours) is the share of an episode held at goal 0 not standing on planted
+// feet, weighted by w_p into the total; an episode with a goal above 0 or a scheduled goal has none.
+TEST(OptimizeObjective, NotStandingCountsOnlyAtGoalZero) {
+  ObjectiveSettings s = settings();
+  s.wp = 20;
+  const auto terms = [&](double goal, double standing, bool scheduled = false) {
+    ObjectiveRecorder r(s, goal, 0.0, kDt);
+    if (scheduled) r.setGoalSchedule({{0.0, 0.0}, {3.0, 0.0}});
+    for (int k = 1; k <= 360; ++k) {
+      const LegFrameSample f = upright({0, kStanding, goal * k * kDt}, {0, 0, goal});
+      r.add(k * kDt, &f, 1);
+    }
+    return r.finish(false, 3.0, 0.0, 0.0, 0.0, standing);
+  };
+  EXPECT_NEAR(terms(0.0, 0.75).fp, 0.25, 1e-12);
+  EXPECT_NEAR(terms(0.0, 0.75).total - terms(0.0, 1.0).total, 20 * 0.25, 1e-9);
+  EXPECT_EQ(terms(1.0, 0.0).fp, 0.0);
+  EXPECT_EQ(terms(0.0, 0.0, /*scheduled=*/true).fp, 0.0);
+}
+
+// A goal-0 episode reports how long it stood: a stand that holds gives f_p near 0 (it first
+// settles), one knocked about by pushes steps to recover and stands less.
+TEST(OptimizeObjective, AStandingEpisodeMeasuresItsStand) {
+  ObjectiveSettings s = settings();
+  s.speeds = {0.0};
+  s.seconds = 10;
+  s.wp = 1;
+  const ObjectiveTerms still = evaluate(gait::Character::Biped, gait::defaultGait(gait::Character::Biped), s, 1);
+  EXPECT_FALSE(still.fell);
+  EXPECT_LT(still.fp, 0.2);
+  s.pushImpulse = 60;
+  s.pushDuration = 0.2;
+  s.pushEvery = 2;
+  const ObjectiveTerms pushed = evaluate(gait::Character::Biped, gait::defaultGait(gait::Character::Biped), s, 1);
+  EXPECT_GT(pushed.fp, still.fp + 0.1);
+}
+
 // The tracking term f_k (ours) is the share of a ramp episode's speed samples off the goal by
 // more than 10 %, exactly what the walking benchmark's ramp counts (sim::runWalk's tracking),
 // weighted by w_k into the total; an episode without a ramp has no samples and no f_k.

@@ -484,7 +484,7 @@ export class OptimizePanel {
     }
     const terms = this.result?.meta?.objective_terms as Record<string, number> | undefined;
     this.bestLine.textContent = s.best === null ? '' :
-      `best ${fmt(s.best)}${terms ? ` (terms f_d ${fmt(terms.fd)} · f_v ${fmt(terms.fv)} · f_a ${fmt(terms.fa)} · f_r ${fmt(terms.fr)}${terms.ft ? ` · f_t ${fmt(terms.ft)}` : ''}${terms.ff ? ` · f_f ${fmt(terms.ff)}` : ''}${terms.fk ? ` · f_k ${fmt(terms.fk)}` : ''}${terms.fs ? ` · f_s ${fmt(terms.fs)}` : ''}${terms.fall ? ` · fall ${fmt(terms.fall)}` : ''})` : ''}`;
+      `best ${fmt(s.best)}${terms ? ` (terms f_d ${fmt(terms.fd)} · f_v ${fmt(terms.fv)} · f_a ${fmt(terms.fa)} · f_r ${fmt(terms.fr)}${terms.ft ? ` · f_t ${fmt(terms.ft)}` : ''}${terms.ff ? ` · f_f ${fmt(terms.ff)}` : ''}${terms.fk ? ` · f_k ${fmt(terms.fk)}` : ''}${terms.fs ? ` · f_s ${fmt(terms.fs)}` : ''}${terms.fp ? ` · f_p ${fmt(terms.fp)}` : ''}${terms.fall ? ` · fall ${fmt(terms.fall)}` : ''})` : ''}`;
     const o = this.options;
     this.learnerLine.textContent = this.result && o
       ? `The learner (violet ring, apart from the crowd) walks the best so far at ${o.speeds[0]} m/s and starts over every ${formatDuration(learnerLoop(o))}.`

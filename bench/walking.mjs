@@ -520,9 +520,8 @@ for (const character of characters) {
 
 if (paramsFile) report.params = paramsFile;
 const f2 = (x) => (x == null ? '–' : x.toFixed(2));
-// When and where a section was measured: its date and commit, and its machine where that is not
-// the one the whole file names.
-// (Sections measured before sections recorded their machine say so.)
+// When and where a section was measured: its date and commit, and, when the file's sections come
+// from more than one machine, its machine (sections measured before they recorded it say so).
 const machineOf = (x) => x.machine ?? 'machine not recorded';
 const machines = [...new Set(Object.values(report.characters).flatMap((r) => Object.values(r))
   .filter((x) => x?.measured).map(machineOf))];

@@ -312,18 +312,13 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   int episodes = 0;
   // Every episode, walking or box-hit, counts once in the mean (a box-hit episode's walking
   // terms are 0).
+  // The terms averaged over the episodes (the simulated seconds are summed).
+  static constexpr double ObjectiveTerms::*kAveraged[] = {
+      &ObjectiveTerms::fd, &ObjectiveTerms::fv, &ObjectiveTerms::fa, &ObjectiveTerms::fr, &ObjectiveTerms::ft,
+      &ObjectiveTerms::ff, &ObjectiveTerms::fk, &ObjectiveTerms::fs, &ObjectiveTerms::fp, &ObjectiveTerms::fall,
+      &ObjectiveTerms::total};
   const auto add = [&](const ObjectiveTerms& t) {
-    mean.fd += t.fd;
-    mean.fv += t.fv;
-    mean.fa += t.fa;
-    mean.fr += t.fr;
-    mean.ft += t.ft;
-    mean.ff += t.ff;
-    mean.fk += t.fk;
-    mean.fs += t.fs;
-    mean.fp += t.fp;
-    mean.fall += t.fall;
-    mean.total += t.total;
+    for (double ObjectiveTerms::*term : kAveraged) mean.*term += t.*term;
     mean.seconds += t.seconds;
     mean.fell = mean.fell || t.fell;
     ++episodes;
@@ -356,7 +351,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   for (double speed : settings.speeds)
     for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed, body));
   if (episodes) {
-    for (double* v : {&mean.fd, &mean.fv, &mean.fa, &mean.fr, &mean.ft, &mean.ff, &mean.fk, &mean.fs, &mean.fp, &mean.fall, &mean.total}) *v /= episodes;
+    for (double ObjectiveTerms::*term : kAveraged) mean.*term /= episodes;
   }
   return mean;
 }

@@ -43,6 +43,7 @@
 //        counts the path's lag behind the goal heading, and a slower gait lowers that: searches
 //        of the canter's turns with f_v alone turned at the told rate by running 2.0–2.6 m/s at
 //        a goal of 3.5 (docs/controller-notes.md §62).
+//        f_s keeps the speed whichever way the body goes.
 //
 // and an eighth, 0 unless weighted (w_p), for episodes held at goal 0 only:
 //
@@ -50,7 +51,6 @@
 //        walking benchmark's standing skill asks for 90 % or more. A search at goal 0 scored on
 //        falls alone (box hits, pushes) found that stepping in place falls less, and gave up the
 //        stand (docs/controller-notes.md §82).
-//        f_s keeps the speed whichever way the body goes.
 //
 // A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
 // any fall scores worse than any walk whose terms stay below fallPenalty, and a later fall

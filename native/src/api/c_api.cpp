@@ -622,7 +622,7 @@ const char* gl_opt_best_json(void* h) {
       {"method", optimize::methodName(o.options().method)},
       {"seed", o.options().seed},
       {"objective", o.bestObjective()},
-      {"objective_terms", {{"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"ft", t.ft}, {"ff", t.ff}, {"fk", t.fk}, {"fs", t.fs}, {"fp", t.fp}, {"fall", t.fall}}},
+      {"objective_terms", {{"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"ft", t.ft}, {"ff", t.ff}, {"fk", t.fk}, {"fs", t.fs}, {"fp", t.fp}, {"fo", t.fo}, {"fall", t.fall}}},
       {"generations", o.generation()},
       {"evaluations", o.evaluations()}};
   opt(h)->text = gait::gaitFileJson(opt(h)->character, o.gaitWith(o.best()), o.generation() ? meta : nlohmann::json::object());

@@ -476,7 +476,7 @@ std::string utcNow() {
 
 json termsJson(const optimize::ObjectiveTerms& t) {
   return {{"total", t.total}, {"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"ft", t.ft}, {"ff", t.ff},
-          {"fk", t.fk}, {"fs", t.fs}, {"fp", t.fp}, {"fall", t.fall}, {"fell", t.fell}, {"seconds", t.seconds}};
+          {"fk", t.fk}, {"fs", t.fs}, {"fp", t.fp}, {"fo", t.fo}, {"fall", t.fall}, {"fell", t.fell}, {"seconds", t.seconds}};
 }
 
 int optimizeCommand(int argc, char** argv) {

@@ -27,6 +27,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"wk", 0, 1000, "1", "w_k: weight of speed tracking f_k, the share of a ramp episode's 2 s speed samples off the goal by more than 10 % (the walking benchmark's ramp criterion; ours)"}, s.wk);
   visit({"ws", 0, 1000, "s²/m²", "w_s: weight of speed deviation f_s, the horizontal speed against the goal speed whatever its direction: unlike f_v, not lowered by a slower turn (ours)"}, s.ws);
   visit({"wp", 0, 1000, "1", "w_p: weight of f_p, the share of an episode held at goal 0 not standing on planted feet (the walking benchmark's standing skill; ours)"}, s.wp);
+  visit({"wo", 0, 1000, "1/m", "w_o: weight of f_o, how far a scheduled episode that ends at goal 0 goes on after the goal reaches 0 (the walking benchmark's standing drift after its ramp; ours)"}, s.wo);
   visit({"fallPenalty", 0, 1e6, "1", "added for a fall, scaled by 1 + the share of the episode left"},
         s.fallPenalty);
   visit({"seconds", 0.5, 120, "s", "length of one episode (thesis: 800 steps at 120 Hz)"}, s.seconds);
@@ -50,6 +51,8 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"pushAnyWay", 0, 1, "1", "1: each push lateral, forward or backward at random; 0: lateral only", true},
         s.pushAnyWay);
   visit({"ramp", 0, 1, "1", "1: also an episode per ground and start whose goal ramps 0 → the top speed → 0", true}, s.ramp);
+  visit({"stopFrom", 0, kMaxGoalSpeed, "m/s", "also an episode per ground and start that walks and stops: the goal ramps 0 → stopFrom → 0, then stays 0 for 5 s, whose drift f_o measures (0: none)"},
+        s.stopFrom);
   double boxHits = s.boxHits;
   visit({"boxHits", 0, 50, "1", "box-hit episodes per goal speed: a box thrown as the demo throws one, only a fall counts", true},
         boxHits);
@@ -115,6 +118,13 @@ ObjectiveRecorder::ObjectiveRecorder(const ObjectiveSettings& settings, double g
                                      double startHeading, double dt)
     : settings_(settings), goalSpeed_(goalSpeed), startHeading_(startHeading), dt_(dt) {}
 
+void ObjectiveRecorder::setGoalSchedule(std::vector<std::pair<double, double>> schedule) {
+  schedule_ = std::move(schedule);
+  // Back from the end over the points at goal 0: the earliest of them starts the final hold.
+  stoppedFrom_ = std::numeric_limits<double>::infinity();
+  for (auto p = schedule_.rbegin(); p != schedule_.rend() && p->second == 0.0; ++p) stoppedFrom_ = p->first;
+}
+
 void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count) {
   const double heading = goalHeading(time);
   const Eigen::Quaterniond goalFrame = gait::headingQuat(heading);
@@ -146,6 +156,8 @@ void ObjectiveRecorder::add(double time, const LegFrameSample* frames, int count
     ++velocityCount_;
     travel_ += v.z() * dt_;
   }
+  if (time >= stoppedFrom_ - 1e-9 && !stopPosition_) stopPosition_ = frames[0].position;
+  lastPosition_ = frames[0].position;
   lastTime_ = time;
 }
 
@@ -162,6 +174,10 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
   t.ff = ff;
   t.fk = fk;
   t.fp = goalSpeed_ == 0.0 && schedule_.empty() ? 1.0 - standing : 0.0;
+  if (stopPosition_) {
+    const Eigen::Vector3d moved = lastPosition_ - *stopPosition_;
+    t.fo = std::hypot(moved.x(), moved.z());
+  }
   t.fell = fell;
   t.seconds = fell ? fallTime : lastTime_;
   if (fell) {
@@ -170,7 +186,7 @@ ObjectiveTerms ObjectiveRecorder::finish(bool fell, double fallTime, double ft, 
   }
   t.total = settings_.wd * t.fd + settings_.wv * t.fv + settings_.wa * t.fa + settings_.wr * t.fr +
             settings_.wt * t.ft + settings_.wf * t.ff + settings_.wk * t.fk + settings_.ws * t.fs +
-            settings_.wp * t.fp + t.fall;
+            settings_.wp * t.fp + settings_.wo * t.fo + t.fall;
   return t;
 }
 
@@ -265,6 +281,12 @@ std::vector<std::pair<double, double>> rampSchedule(double top, double seconds) 
   return {{0.0, 0.0}, {0.5 * seconds, top}, {seconds, 0.0}};
 }
 
+std::vector<std::pair<double, double>> stopSchedule(double top, double seconds) {
+  std::vector<std::pair<double, double>> points = rampSchedule(top, seconds);
+  points.push_back({seconds + kStopHoldSeconds, 0.0});
+  return points;
+}
+
 double trackingMisses(int samples, int within) {
   return samples > 0 ? static_cast<double>(samples - within) / samples : 0.0;
 }
@@ -315,7 +337,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   // The terms averaged over the episodes (the simulated seconds are summed).
   static constexpr double ObjectiveTerms::*kAveraged[] = {
       &ObjectiveTerms::fd, &ObjectiveTerms::fv, &ObjectiveTerms::fa, &ObjectiveTerms::fr, &ObjectiveTerms::ft,
-      &ObjectiveTerms::ff, &ObjectiveTerms::fk, &ObjectiveTerms::fs, &ObjectiveTerms::fp, &ObjectiveTerms::fall,
+      &ObjectiveTerms::ff, &ObjectiveTerms::fk, &ObjectiveTerms::fs, &ObjectiveTerms::fp, &ObjectiveTerms::fo, &ObjectiveTerms::fall,
       &ObjectiveTerms::total};
   const auto add = [&](const ObjectiveTerms& t) {
     for (double ObjectiveTerms::*term : kAveraged) mean.*term += t.*term;
@@ -323,7 +345,8 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     mean.fell = mean.fell || t.fell;
     ++episodes;
   };
-  // The goal speeds held, then (with `ramp`) the ramp up to the fastest of them, for every start.
+  // The goal speeds held, then (with `ramp`) the ramp up to the fastest of them, then (with
+  // `stopFrom`) the walk and stop, for every start.
   struct Goal {
     double speed;
     std::vector<std::pair<double, double>> schedule;  // empty: held
@@ -334,6 +357,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     const double top = *std::max_element(settings.speeds.begin(), settings.speeds.end());
     goals.push_back({top, rampSchedule(top, settings.seconds)});
   }
+  if (settings.stopFrom > 0) goals.push_back({settings.stopFrom, stopSchedule(settings.stopFrom, settings.seconds)});
   for (const Ground& ground : settings.grounds) {
     for (const Goal& goal : goals) {
       for (int start = 0; start < settings.starts; ++start) {

@@ -52,6 +52,14 @@
 //        falls alone (box hits, pushes) found that stepping in place falls less, and gave up the
 //        stand (docs/controller-notes.md §82).
 //
+// and a ninth, 0 unless weighted (w_o), for scheduled episodes that end held at goal 0 only:
+//
+//   f_o  the stop's overshoot: how far (m, horizontally) the root leg frame moves from the time
+//        the goal reaches 0 for good to the episode's end: the walking benchmark's standing
+//        drift after its ramp (criterion < 0.1 m). A standing key searched at goal 0 alone took
+//        the box gain and stopped 0.12 m past the goal's return to 0, as no episode of its search
+//        walked and stopped (docs/controller-notes.md §82); `stopFrom` adds such an episode.
+//
 // A fall (sim::hasFallen) ends the episode and adds fallPenalty·(1 + remaining/episode time):
 // any fall scores worse than any walk whose terms stay below fallPenalty, and a later fall
 // scores better than an earlier one, so a search that starts from a falling gait climbs
@@ -59,6 +67,8 @@
 #pragma once
 #include <Eigen/Geometry>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +102,7 @@ struct ObjectiveSettings {
   double wk = 0.0;                                 // w_k of f_k (a ramp's speed tracking, ours)
   double ws = 0.0;                                 // w_s of f_s (speed whatever the direction, ours)
   double wp = 0.0;                                 // w_p of f_p (not standing at goal 0, ours)
+  double wo = 0.0;                                 // w_o of f_o (the stop's overshoot, ours)
   double fallPenalty = 100.0;
   double seconds = 800.0 / 120.0;  // per episode: the thesis's 800 fixed steps
   double warmup = 1.0;             // s before travel and velocity are measured
@@ -124,6 +135,10 @@ struct ObjectiveSettings {
   // `speeds` and back to 0 over the episode (Wang et al. 2010 optimise over speed changes); the
   // velocity term then follows the ramping goal.
   double ramp = 0.0;
+  // A goal speed, m/s (0 = none): one more episode per ground and start state that walks and
+  // stops: its goal ramps from 0 up to `stopFrom` and back to 0 over `seconds`, as `ramp` does,
+  // then holds 0 for kStopHoldSeconds, over which f_o measures how far it goes on.
+  double stopFrom = 0.0;
   // Box-hit episodes per goal speed (0 = none): a box thrown as the demo throws one, at a random
   // body part from a random side (sim/box_hits.h), judged 3 s after the hit. Such an episode's
   // only term is the fall penalty, scaled by the share of the 3 s left when it fell; it counts
@@ -167,6 +182,14 @@ uint32_t speedChangeSeed(uint32_t seed, int index);
 // 0 at its end, as the walking benchmark's ramp does over 60 s.
 std::vector<std::pair<double, double>> rampSchedule(double top, double seconds);
 
+// How long a stop episode (settings.stopFrom) stands at goal 0 after its ramp, s: past the
+// stop's last step (the shipped biped comes to rest within 2 s) and short enough to leave the
+// search's time to its other episodes.
+constexpr double kStopHoldSeconds = 5.0;
+
+// The goal of a stop episode: rampSchedule(top, seconds), then goal 0 held for kStopHoldSeconds.
+std::vector<std::pair<double, double>> stopSchedule(double top, double seconds);
+
 // The scalar settings as a schema-style table (name, bounds, default, unit, description), so
 // they are read, checked and exported the same way as gait parameters. `speeds` is a list and
 // is handled separately (`speeds` in JSON, --speeds on the command line), as is `grounds`
@@ -192,8 +215,9 @@ struct ObjectiveTerms {
   double fk = 0;          // a ramp's speed samples off the goal by more than 10 %, as a share
   double fs = 0;          // (horizontal speed − goal speed)², whatever the direction
   double fp = 0;          // at goal 0, the share of the time not standing on planted feet
+  double fo = 0;          // m moved after a schedule's goal returned to 0 for good
   double fall = 0;        // the fall penalty, 0 if it did not fall
-  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + w_k·f_k + w_s·f_s + w_p·f_p + fall
+  double total = 0;       // w_d·f_d + w_v·f_v + w_h·f_a + w_r·f_r + w_t·f_t + w_f·f_f + w_k·f_k + w_s·f_s + w_p·f_p + w_o·f_o + fall
   bool fell = false;
   double seconds = 0;     // simulated
 };
@@ -226,13 +250,19 @@ class ObjectiveRecorder {
 
   double goalHeading(double time) const { return startHeading_ + settings_.turnRate * time; }
   // A goal speed that changes: (time s, speed m/s) points (sim::scheduleAt), instead of the
-  // constructor's constant goalSpeed.
-  void setGoalSchedule(std::vector<std::pair<double, double>> schedule) { schedule_ = std::move(schedule); }
+  // constructor's constant goalSpeed. If it ends held at 0, f_o measures from where that hold
+  // begins.
+  void setGoalSchedule(std::vector<std::pair<double, double>> schedule);
 
  private:
   ObjectiveSettings settings_;
   double goalSpeed_, startHeading_, dt_;
   std::vector<std::pair<double, double>> schedule_;  // empty: goalSpeed_ throughout
+  // f_o: the time from which the schedule's goal stays 0 (infinite: it does not end at 0), and
+  // the root leg frame's position at the first step from then and at the last.
+  double stoppedFrom_ = std::numeric_limits<double>::infinity();
+  std::optional<Eigen::Vector3d> stopPosition_;
+  Eigen::Vector3d lastPosition_ = Eigen::Vector3d::Zero();
   double travel_ = 0, goalTravel_ = 0;      // along the goal heading, after the warm-up: walked, asked
   double velocitySum_ = 0;  int velocityCount_ = 0;
   double speedSum_ = 0;  // Σ (|v| − goal)², over the velocity term's steps
@@ -260,7 +290,7 @@ ObjectiveTerms runEpisode(gait::Character c, const gait::Gait& gait,
                           const std::vector<std::pair<double, double>>& schedule = {});
 
 // The objective of a parameter set: the mean over every episode: ground × speed × start state,
-// then the ramps, the speed changes and the box hits the settings ask for. Deterministic: the
+// then the ramps, the stops, the speed changes and the box hits the settings ask for. Deterministic: the
 // same inputs give the same bits (each episode is its own single-threaded simulation).
 ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
                         const ObjectiveSettings& settings, uint32_t seed,

@@ -96,7 +96,7 @@ TEST(OptimizeCApi, DescribesItsSettingsWithBoundsAndDefaults) {
     EXPECT_NE(opt, nullptr) << gl_last_error();
     gl_opt_destroy(opt);
   }
-  EXPECT_EQ(names, "wd wv wa wr wt wf wk ws wp fallPenalty seconds warmup starts startImpulse startPhases turnRate turnBothWays turnStraight pushImpulse pushEvery pushDuration pushAnyWay ramp boxHits speedChanges ");
+  EXPECT_EQ(names, "wd wv wa wr wt wf wk ws wp wo fallPenalty seconds warmup starts startImpulse startPhases turnRate turnBothWays turnStraight pushImpulse pushEvery pushDuration pushAnyWay ramp stopFrom boxHits speedChanges ");
   EXPECT_EQ(j["speeds"]["min"], -5.0);
   EXPECT_EQ(j["speeds"]["max"], 5.0);
   EXPECT_EQ(j["speeds"]["default"], json::array({1.0}));

@@ -261,6 +261,61 @@ TEST(OptimizeObjective, AStandingEpisodeMeasuresItsStand) {
   EXPECT_GT(pushed.fp, still.fp + 0.1);
 }
 
+// The stop term f_o (ours) is how far the root leg frame moves after a schedule's goal returns
+// to 0 for good, weighted by w_o into the total; a schedule that does not end at 0, or a held
+// goal, has none.
+TEST(OptimizeObjective, TheStopsOvershootIsTheMoveAfterTheGoalReachesZero) {
+  ObjectiveSettings s = settings();
+  s.wo = 50;
+  // Walks +z at 1 m/s until 2 s, then slides 0.3 m sideways (+x) by 2.3 s and stays.
+  const auto at = [](double t) {
+    return upright({0.3 * std::clamp((t - 2.0) / 0.3, 0.0, 1.0), kStanding, std::min(t, 2.0)}, {0, 0, t < 2 ? 1.0 : 0.0});
+  };
+  const auto terms = [&](std::vector<std::pair<double, double>> schedule) {
+    ObjectiveRecorder r(s, 1.0, 0.0, kDt);
+    if (!schedule.empty()) r.setGoalSchedule(schedule);
+    for (int k = 1; k <= 480; ++k) {
+      const LegFrameSample f = at(k * kDt);
+      r.add(k * kDt, &f, 1);
+    }
+    return r.finish(false, 4.0);
+  };
+  // The goal is 0 from 2 s (the last three points): the 0.3 m slide counts.
+  const ObjectiveTerms stopped = terms({{0.0, 1.0}, {2.0, 0.0}, {3.0, 0.0}, {4.0, 0.0}});
+  EXPECT_NEAR(stopped.fo, 0.3, 1e-9);
+  // From 1 s the goal is 0 as well: the last 1 m of the walk counts too.
+  EXPECT_NEAR(terms({{0.0, 1.0}, {1.0, 0.0}, {4.0, 0.0}}).fo, std::hypot(1.0, 0.3), 1e-9);
+  // Weighted into the total.
+  const ObjectiveTerms unweighted = [&] { s.wo = 0; return terms({{0.0, 1.0}, {2.0, 0.0}, {4.0, 0.0}}); }();
+  EXPECT_NEAR(stopped.total - unweighted.total, 50 * 0.3, 1e-9);
+  // A schedule that ends above 0, and a held goal, have no stop.
+  EXPECT_EQ(terms({{0.0, 1.0}, {2.0, 0.0}, {4.0, 0.5}}).fo, 0.0);
+  EXPECT_EQ(terms({}).fo, 0.0);
+}
+
+// `stopFrom` adds, per start state, a walk up to that goal and back to 0 followed by a stand of
+// kStopHoldSeconds, and the shipped biped stops in it: it goes on after the goal returns to 0,
+// but by less than the walking benchmark's 0.1 m.
+TEST(OptimizeObjective, AStopEpisodeWalksStopsAndMeasuresTheOvershoot) {
+  EXPECT_EQ(stopSchedule(0.8, 10.0),
+            (std::vector<std::pair<double, double>>{{0.0, 0.0}, {5.0, 0.8}, {10.0, 0.0}, {10.0 + kStopHoldSeconds, 0.0}}));
+  ObjectiveSettings s = settings();
+  s.speeds = {};
+  s.seconds = 10;
+  s.stopFrom = 0.8;
+  const gait::Gait preset = gait::defaultGait(gait::Character::Biped);
+  const ObjectiveTerms stop = evaluate(gait::Character::Biped, preset, s, 1);
+  ASSERT_FALSE(stop.fell);
+  EXPECT_NEAR(stop.seconds, 10.0 + kStopHoldSeconds, 0.01);  // one episode: the stop
+  EXPECT_GT(stop.fo, 0.0);
+  EXPECT_LT(stop.fo, 0.1);
+  // The same as the episode run alone.
+  const std::vector<std::pair<double, double>> schedule = stopSchedule(0.8, 10.0);
+  const ObjectiveTerms episode = runEpisode(gait::Character::Biped, preset, s, 0.8, 0, 1, Ground{}, nullptr, schedule);
+  EXPECT_EQ(episode.fo, stop.fo);
+  EXPECT_EQ(episode.total, stop.total);
+}
+
 // The tracking term f_k (ours) is the share of a ramp episode's speed samples off the goal by
 // more than 10 %, exactly what the walking benchmark's ramp counts (sim::runWalk's tracking),
 // weighted by w_k into the total; an episode without a ramp has no samples and no f_k.

@@ -117,6 +117,14 @@ const fmt = (x: number) => (x === 0 ? '0' : Math.abs(x) >= 1000 || Math.abs(x) <
 /** The chart's line, and the learner's ring in the scene (main.ts): one colour for one idea. */
 export const LEARNER_COLOUR = '#7b4fd6';
 
+// The objective's terms as the C ABI reports them (optimize/objective.h), with their names in
+// the thesis's notation and whether the line always shows them.
+const OBJECTIVE_TERMS: [key: string, name: string, always: boolean][] = [
+  ['fd', 'f_d', true], ['fv', 'f_v', true], ['fa', 'f_a', true], ['fr', 'f_r', true],
+  ['ft', 'f_t', false], ['ff', 'f_f', false], ['fk', 'f_k', false], ['fs', 'f_s', false],
+  ['fp', 'f_p', false], ['fo', 'f_o', false], ['fall', 'fall', false],
+];
+
 export class OptimizePanel {
   readonly element: HTMLDetailsElement;
   private readonly inputs = new Map<string, HTMLInputElement | HTMLSelectElement>();
@@ -483,8 +491,11 @@ export class OptimizePanel {
       this.progressLine.textContent = parts.join(' · ');
     }
     const terms = this.result?.meta?.objective_terms as Record<string, number> | undefined;
-    this.bestLine.textContent = s.best === null ? '' :
-      `best ${fmt(s.best)}${terms ? ` (terms f_d ${fmt(terms.fd)} · f_v ${fmt(terms.fv)} · f_a ${fmt(terms.fa)} · f_r ${fmt(terms.fr)}${terms.ft ? ` · f_t ${fmt(terms.ft)}` : ''}${terms.ff ? ` · f_f ${fmt(terms.ff)}` : ''}${terms.fk ? ` · f_k ${fmt(terms.fk)}` : ''}${terms.fs ? ` · f_s ${fmt(terms.fs)}` : ''}${terms.fp ? ` · f_p ${fmt(terms.fp)}` : ''}${terms.fall ? ` · fall ${fmt(terms.fall)}` : ''})` : ''}`;
+    // The thesis's four terms always; ours and the fall penalty only when they count.
+    const termText = terms && OBJECTIVE_TERMS
+      .filter(([key, , always]) => always || terms[key])
+      .map(([key, name]) => `${name} ${fmt(terms[key])}`).join(' · ');
+    this.bestLine.textContent = s.best === null ? '' : `best ${fmt(s.best)}${termText ? ` (terms ${termText})` : ''}`;
     const o = this.options;
     this.learnerLine.textContent = this.result && o
       ? `The learner (violet ring, apart from the crowd) walks the best so far at ${o.speeds[0]} m/s and starts over every ${formatDuration(learnerLoop(o))}.`

@@ -51,7 +51,7 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"pushAnyWay", 0, 1, "1", "1: each push lateral, forward or backward at random; 0: lateral only", true},
         s.pushAnyWay);
   visit({"ramp", 0, 1, "1", "1: also an episode per ground and start whose goal ramps 0 → the top speed → 0", true}, s.ramp);
-  visit({"stopFrom", 0, kMaxGoalSpeed, "m/s", "also an episode per ground and start that walks and stops: the goal ramps 0 → stopFrom → 0, then stays 0 for 5 s, whose drift f_o measures (0: none)"},
+  visit({"stopFrom", 0, kMaxGoalSpeed, "m/s", "also an episode per ground and start that walks and stops, unpushed: the goal ramps 0 → stopFrom → 0, then stays 0 for 5 s, whose drift f_o measures (0: none)"},
         s.stopFrom);
   double boxHits = s.boxHits;
   visit({"boxHits", 0, 50, "1", "box-hit episodes per goal speed: a box thrown as the demo throws one, only a fall counts", true},
@@ -61,6 +61,8 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"speedChanges", 0, 256, "1", "speed-change episodes per ground: the goal changes between the slowest and the fastest goal speed, each held 1–4 s (the walking benchmark's gait-change trial)", true},
         speedChanges);
   s.speedChanges = static_cast<int>(std::lround(speedChanges));
+  visit({"resample", 0, 1, "1", "1: every generation walks episodes of its own (new start nudges, push phases, boxes), and the search's incumbent walks them too, so a search cannot fit one draw of a chance trial", true},
+        s.resample);
 }
 
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value) {
@@ -350,6 +352,7 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   struct Goal {
     double speed;
     std::vector<std::pair<double, double>> schedule;  // empty: held
+    bool pushed = true;                               // false: pushImpulse ignored
   };
   std::vector<Goal> goals;
   for (double speed : settings.speeds) goals.push_back({speed, {}});
@@ -357,11 +360,13 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
     const double top = *std::max_element(settings.speeds.begin(), settings.speeds.end());
     goals.push_back({top, rampSchedule(top, settings.seconds)});
   }
-  if (settings.stopFrom > 0) goals.push_back({settings.stopFrom, stopSchedule(settings.stopFrom, settings.seconds)});
+  if (settings.stopFrom > 0) goals.push_back({settings.stopFrom, stopSchedule(settings.stopFrom, settings.seconds), false});
+  ObjectiveSettings unpushed = settings;
+  unpushed.pushImpulse = 0.0;
   for (const Ground& ground : settings.grounds) {
     for (const Goal& goal : goals) {
       for (int start = 0; start < settings.starts; ++start) {
-        add(runEpisode(c, gait, settings, goal.speed, start, seed, ground, body, goal.schedule));
+        add(runEpisode(c, gait, goal.pushed ? settings : unpushed, goal.speed, start, seed, ground, body, goal.schedule));
       }
     }
   }

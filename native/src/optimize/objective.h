@@ -137,7 +137,11 @@ struct ObjectiveSettings {
   double ramp = 0.0;
   // A goal speed, m/s (0 = none): one more episode per ground and start state that walks and
   // stops: its goal ramps from 0 up to `stopFrom` and back to 0 over `seconds`, as `ramp` does,
-  // then holds 0 for kStopHoldSeconds, over which f_o measures how far it goes on.
+  // then holds 0 for kStopHoldSeconds, over which f_o measures how far it goes on. It is not
+  // pushed (pushImpulse is for the other episodes): the benchmark's ramp has no pushes, and a push
+  // in the hold would make f_o measure the steps that recover from it. Searched with pushes, a
+  // standing key stopped within 0.1 m in its pushed stops and 0.4 m past the goal's return to 0
+  // without them (docs/controller-notes.md §83).
   double stopFrom = 0.0;
   // Box-hit episodes per goal speed (0 = none): a box thrown as the demo throws one, at a random
   // body part from a random side (sim/box_hits.h), judged 3 s after the hit. Such an episode's
@@ -152,6 +156,15 @@ struct ObjectiveSettings {
   // 2010 optimise over speed changes). With keys on both sides of a change of footfall pattern,
   // these are the episodes that meet the change; the velocity term follows the goal.
   int speedChanges = 0;
+  // 1: every generation of a search walks episodes of its own: their seed (start nudges, push
+  // phases, thrown boxes, speed changes) follows the generation, and the search's incumbent walks
+  // them too (optimize/optimizer.h). 0 (default): every generation walks the same episodes. A
+  // fall-or-not trial such as a thrown box is a coin toss per episode; a search scored on one
+  // fixed draw of 50 or 400 kept the candidates that were lucky on it and gained nothing on
+  // throws it had not seen (docs/controller-notes.md §48, §82). Wang et al. (2010) optimise the
+  // expected objective over random disturbances; fresh episodes every generation estimate it
+  // without letting one sample be fitted, the candidates of a generation sharing theirs.
+  double resample = 0.0;
 };
 
 // The goal turn rate of the episodes of start state `start` (settings.turnBothWays, turnStraight).

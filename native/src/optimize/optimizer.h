@@ -103,7 +103,8 @@ class Optimizer {
  public:
   virtual ~Optimizer() = default;
 
-  // Runs one generation: K evaluations on the pool. Returns what it reached.
+  // Runs one generation: K evaluations on the pool (K + 1 for a resampled CMA-ES, its mean
+  // walked as well). Returns what it reached.
   Generation step();
 
   // The start's own objective, evaluated once (here or before the first generation, outside the
@@ -112,6 +113,8 @@ class Optimizer {
   // samples around the start without evaluating it, and from a gait near its optimum a search of
   // 200 candidates had written out one that scored worse than its start (docs/controller-notes.md
   // §66). The greedy search re-evaluates it as its first candidate, its determinism check.
+  // Resampled, the start is scored on the first generation's episodes, and what a later
+  // generation reports is measured on other episodes: no longer comparable with it.
   const ObjectiveTerms& startTerms();
 
   const gait::GaitParams& best() const { return best_; }

@@ -46,7 +46,7 @@ test('every subcommand has --help, integers are integers, and seeds share one ra
   // The optimiser's help lists every objective setting it accepts, each with its range.
   const help = run(['optimize', '--help']).stdout;
   for (const name of ['wd', 'wv', 'wa', 'wr', 'wt', 'wf', 'wk', 'ws', 'wp', 'wo', 'fallPenalty', 'seconds', 'warmup', 'starts', 'startImpulse',
-    'startPhases', 'turnRate', 'turnBothWays', 'turnStraight', 'pushImpulse', 'pushEvery', 'pushDuration', 'pushAnyWay', 'ramp', 'stopFrom', 'boxHits', 'speedChanges', 'resample']) {
+    'startPhases', 'turnRate', 'turnBothWays', 'turnStraight', 'pushImpulse', 'pushEvery', 'pushDuration', 'pushAnyWay', 'ramp', 'stopFrom', 'boxHits', 'speedChanges']) {
     assert.match(help, new RegExp(`^  ${name} +\\S+ to \\S+`, 'm'), `optimize --help lists ${name}`);
   }
   for (const [args, name] of [

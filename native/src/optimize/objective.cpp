@@ -61,8 +61,6 @@ void forEachSetting(ObjectiveSettings& s, const std::function<void(const Setting
   visit({"speedChanges", 0, 256, "1", "speed-change episodes per ground: the goal changes between the slowest and the fastest goal speed, each held 1–4 s (the walking benchmark's gait-change trial)", true},
         speedChanges);
   s.speedChanges = static_cast<int>(std::lround(speedChanges));
-  visit({"resample", 0, 1, "1", "1: every generation walks episodes of its own (new start nudges, push phases, boxes), and the search's incumbent walks them too, so a search cannot fit one draw of a chance trial", true},
-        s.resample);
 }
 
 std::string setSetting(ObjectiveSettings& s, const std::string& name, double value) {

@@ -156,15 +156,6 @@ struct ObjectiveSettings {
   // 2010 optimise over speed changes). With keys on both sides of a change of footfall pattern,
   // these are the episodes that meet the change; the velocity term follows the goal.
   int speedChanges = 0;
-  // 1: every generation of a search walks episodes of its own: their seed (start nudges, push
-  // phases, thrown boxes, speed changes) follows the generation, and the search's incumbent walks
-  // them too (optimize/optimizer.h). 0 (default): every generation walks the same episodes. A
-  // fall-or-not trial such as a thrown box is a coin toss per episode; a search scored on one
-  // fixed draw of 50 or 400 kept the candidates that were lucky on it and gained nothing on
-  // throws it had not seen (docs/controller-notes.md §48, §82). Wang et al. (2010) optimise the
-  // expected objective over random disturbances; fresh episodes every generation estimate it
-  // without letting one sample be fitted, the candidates of a generation sharing theirs.
-  double resample = 0.0;
 };
 
 // The goal turn rate of the episodes of start state `start` (settings.turnBothWays, turnStraight).

@@ -80,11 +80,10 @@ Optimizer::Optimizer(const SearchOptions& options, const gait::GaitParams& start
   if (!error.empty()) throw std::invalid_argument(error);
 }
 
-ObjectiveTerms Optimizer::score(const gait::GaitParams& params, int draw) const {
-  // The same episodes (start states, push phases) for every candidate of a generation, so
-  // objectives are comparable; they follow from the search seed, and with resample from the draw.
-  const uint64_t drawn = resampling() ? 2246822519ull * static_cast<uint64_t>(draw) : 0;
-  const uint32_t episodeSeed = static_cast<uint32_t>(options_.seed * 2654435761u + 12345u + drawn);
+ObjectiveTerms Optimizer::score(const gait::GaitParams& params) const {
+  // The same episodes (start states, push phases) for every candidate of every generation, so
+  // objectives are comparable; they follow from the search seed.
+  const uint32_t episodeSeed = static_cast<uint32_t>(options_.seed * 2654435761u + 12345u);
   return evaluate(options_.character, gaitWith(params), options_.objective, episodeSeed,
                   options_.body ? &*options_.body : nullptr);
 }
@@ -124,23 +123,14 @@ Generation Optimizer::step() {
   std::vector<ObjectiveTerms> results(k);
   // One task per evaluation, each thread taking the next until none are left (falls end
   // episodes early, so evaluations differ in cost). Results land in their own slot.
-  const int draw = generation_;  // generation g walks draw g − 1 (the start's score: draw 0)
-  pool_.forEach(k, [&](int i) { results[i] = score(candidates[i], draw); });
+  pool_.forEach(k, [&](int i) { results[i] = score(candidates[i]); });
   evaluations_ += k;
   ++generation_;
 
   Generation g;
   g.index = generation_;
-  if (resampling()) {
-    // The incumbent as these episodes score it: what the candidates are compared with.
-    const int i = incumbentIndex(k);
-    bestObjective_ = results[i].total;
-    bestTerms_ = results[i];
-    bestVector_ = points[i];
-    best_ = candidates[i];
-  }
   int winner = -1;
-  for (int i = 0; i < k && (!resampling() || candidatesReplaceIncumbent()); ++i) {
+  for (int i = 0; i < k; ++i) {
     if (results[i].total < bestObjective_ && (winner < 0 || results[i].total < results[winner].total)) winner = i;
   }
   g.improved = winner >= 0;
@@ -175,11 +165,8 @@ class Greedy : public Optimizer {
     return points;
   }
   void tell(const std::vector<std::vector<double>>&, const std::vector<ObjectiveTerms>& results) override {
-    // Resampled, the best walks other episodes than when it was scored: no check.
-    if (!resampling() && std::isfinite(incumbent_) && results[0].total != incumbent_) ++mismatches_;
+    if (std::isfinite(incumbent_) && results[0].total != incumbent_) ++mismatches_;
   }
-  int incumbentIndex(int) const override { return 0; }  // the best, proposed first
-  bool candidatesReplaceIncumbent() const override { return true; }
 
  private:
   double incumbent_ = std::numeric_limits<double>::infinity();
@@ -202,25 +189,17 @@ class CmaEsSearch : public Optimizer {
       for (size_t i = 0; i < lo_.size(); ++i)
         points[k][i] = lo_[i] + std::clamp(samples[k][i], 0.0, 1.0) * (hi_[i] - lo_[i]);
     samples_.assign(samples.begin(), samples.end());
-    // Resampled, the mean walks the generation's episodes as well: it is the result.
-    if (resampling()) {
-      std::vector<double> mean(lo_.size());
-      for (size_t i = 0; i < lo_.size(); ++i) mean[i] = lo_[i] + std::clamp(cma_.mean()[i], 0.0, 1.0) * (hi_[i] - lo_[i]);
-      points.push_back(mean);
-    }
     return points;
   }
 
   void tell(const std::vector<std::vector<double>>&, const std::vector<ObjectiveTerms>& results) override {
-    std::vector<double> costs(samples_.size());  // the samples' (not the mean's, when resampled)
-    for (size_t k = 0; k < samples_.size(); ++k) {
+    std::vector<double> costs(results.size());
+    for (size_t k = 0; k < results.size(); ++k) {
       const Eigen::VectorXd inside = samples_[k].cwiseMax(0.0).cwiseMin(1.0);
       costs[k] = results[k].total + (samples_[k] - inside).squaredNorm();
     }
     cma_.tell(costs);
   }
-  int incumbentIndex(int k) const override { return k - 1; }  // the mean, proposed last
-  bool candidatesReplaceIncumbent() const override { return false; }
 
  private:
   Eigen::VectorXd normalised(const std::vector<double>& x) const {

@@ -11,16 +11,6 @@
 //   cmaes   CMA-ES (Hansen's (μ/μ_w, λ) covariance matrix adaptation, beyond the thesis; its
 //           §2.3 names it as used by related work), λ = K samples per generation.
 //
-// With ObjectiveSettings::resample, every generation walks episodes of its own, and the search's
-// incumbent walks them too, so that a candidate is compared with it on the same episodes
-// (common random numbers) and no search can fit one draw of a chance trial:
-//   greedy  the current best is its first candidate anyway; its score on the generation's
-//           episodes is the best objective, and a candidate that beats it there replaces it.
-//   cmaes   the distribution's mean is walked as one more point; it is the search's result, and
-//           the samples only move it (the luckiest sample of one draw estimates nothing better).
-// The best objective then is the incumbent's score on that generation's episodes: it moves up
-// and down with the draws, and the result is judged on trials no search walked.
-//
 // Candidates of a generation are evaluated in parallel on a thread pool, one evaluation (its
 // own single-threaded Simulation) per task; all random numbers are drawn on the calling thread
 // before the evaluations start, so the search does not depend on the thread count.
@@ -103,8 +93,7 @@ class Optimizer {
  public:
   virtual ~Optimizer() = default;
 
-  // Runs one generation: K evaluations on the pool (K + 1 for a resampled CMA-ES, its mean
-  // walked as well). Returns what it reached.
+  // Runs one generation: K evaluations on the pool. Returns what it reached.
   Generation step();
 
   // The start's own objective, evaluated once (here or before the first generation, outside the
@@ -113,8 +102,6 @@ class Optimizer {
   // samples around the start without evaluating it, and from a gait near its optimum a search of
   // 200 candidates had written out one that scored worse than its start (docs/controller-notes.md
   // §66). The greedy search re-evaluates it as its first candidate, its determinism check.
-  // Resampled, the start is scored on the first generation's episodes, and what a later
-  // generation reports is measured on other episodes: no longer comparable with it.
   const ObjectiveTerms& startTerms();
 
   const gait::GaitParams& best() const { return best_; }
@@ -131,9 +118,8 @@ class Optimizer {
   int determinismMismatches() const { return mismatches_; }
 
   // The objective of any parameter set on this search's episodes (the same start states and
-  // push phases every candidate gets); e.g. the start's, for comparison. With resample, those of
-  // draw `draw` (generation g walks draw g − 1); without it every draw is the same episodes.
-  ObjectiveTerms score(const gait::GaitParams& params, int draw = 0) const;
+  // push phases every candidate gets); e.g. the start's, for comparison.
+  ObjectiveTerms score(const gait::GaitParams& params) const;
 
   static std::unique_ptr<Optimizer> create(const SearchOptions& options, const gait::GaitParams& start);
 
@@ -143,11 +129,6 @@ class Optimizer {
   virtual std::vector<std::vector<double>> propose() = 0;
   // Told their objectives, in the same order.
   virtual void tell(const std::vector<std::vector<double>>& points, const std::vector<ObjectiveTerms>& results) = 0;
-  // With resample: which of the K points proposed is the incumbent, and whether a candidate that
-  // beats it on the generation's episodes replaces it (see the top of this file).
-  virtual int incumbentIndex(int k) const = 0;
-  virtual bool candidatesReplaceIncumbent() const = 0;
-  bool resampling() const { return options_.objective.resample > 0; }
 
   SearchOptions options_;
   std::vector<double> lo_, hi_;

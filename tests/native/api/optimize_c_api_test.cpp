@@ -90,14 +90,13 @@ TEST(OptimizeCApi, DescribesItsSettingsWithBoundsAndDefaults) {
     EXPECT_LE(s["min"].get<double>(), s["default"].get<double>()) << s.dump();
     EXPECT_GE(s["max"].get<double>(), s["default"].get<double>()) << s.dump();
     EXPECT_FALSE(s["description"].get<std::string>().empty());
-    EXPECT_EQ(s["integer"].get<bool>(), s["name"] == "starts" || s["name"] == "startPhases" || s["name"] == "turnBothWays" || s["name"] == "turnStraight" || s["name"] == "pushAnyWay" || s["name"] == "ramp" || s["name"] == "boxHits" || s["name"] == "speedChanges" ||
-                                           s["name"] == "resample");
+    EXPECT_EQ(s["integer"].get<bool>(), s["name"] == "starts" || s["name"] == "startPhases" || s["name"] == "turnBothWays" || s["name"] == "turnStraight" || s["name"] == "pushAnyWay" || s["name"] == "ramp" || s["name"] == "boxHits" || s["name"] == "speedChanges");
     // Every setting it lists is one gl_opt_create accepts at its default.
     void* opt = create(GL_KIND_BIPED, 0, 2, 1, 1, nullptr, json{{s["name"], s["default"]}}.dump().c_str());
     EXPECT_NE(opt, nullptr) << gl_last_error();
     gl_opt_destroy(opt);
   }
-  EXPECT_EQ(names, "wd wv wa wr wt wf wk ws wp wo fallPenalty seconds warmup starts startImpulse startPhases turnRate turnBothWays turnStraight pushImpulse pushEvery pushDuration pushAnyWay ramp stopFrom boxHits speedChanges resample ");
+  EXPECT_EQ(names, "wd wv wa wr wt wf wk ws wp wo fallPenalty seconds warmup starts startImpulse startPhases turnRate turnBothWays turnStraight pushImpulse pushEvery pushDuration pushAnyWay ramp stopFrom boxHits speedChanges ");
   EXPECT_EQ(j["speeds"]["min"], -5.0);
   EXPECT_EQ(j["speeds"]["max"], 5.0);
   EXPECT_EQ(j["speeds"]["default"], json::array({1.0}));

@@ -774,39 +774,6 @@ TEST(OptimizeSearch, GreedyKeepsTheBestAndNeverGetsWorse) {
   EXPECT_EQ(again.total, opt->bestObjective());
 }
 
-// Resampled (ObjectiveSettings::resample), every generation walks episodes of its own and the
-// incumbent walks them too: the best objective reported is the incumbent's score on that
-// generation's draw; CMA-ES's incumbent is its mean, walked as one more point; and the search is
-// as reproducible as one on fixed episodes, whatever the thread count.
-TEST(OptimizeSearch, ResampledGenerationsWalkNewEpisodesAndScoreTheIncumbentOnThem) {
-  const gait::GaitParams start = gait::defaultParams(gait::Character::Biped);
-  for (Method m : {Method::Greedy, Method::CmaEs}) {
-    SCOPED_TRACE(methodName(m));
-    SearchOptions o = quickSearch(m, 1);
-    o.objective.starts = 2;  // start 1 is nudged in a direction drawn from the episodes' seed
-    o.objective.resample = 1;
-    auto a = Optimizer::create(o, start);
-    EXPECT_NE(a->score(start, 0).total, a->score(start, 1).total) << "another draw, other episodes";
-    for (int g = 1; g <= 3; ++g) {
-      const Generation gen = a->step();
-      EXPECT_EQ(a->score(a->best(), g - 1).total, gen.bestObjective) << "generation " << g;
-    }
-    EXPECT_EQ(a->determinismMismatches(), 0);
-    EXPECT_EQ(a->evaluations(), 3 * (o.candidates + (m == Method::CmaEs ? 1 : 0)));
-    SearchOptions two = o;
-    two.threads = 2;
-    auto b = Optimizer::create(two, start);
-    for (int g = 0; g < 3; ++g) b->step();
-    EXPECT_EQ(std::memcmp(&a->best(), &b->best(), sizeof(gait::GaitParams)), 0);
-    EXPECT_EQ(a->bestObjective(), b->bestObjective());
-  }
-  // Without resample, every draw is the same episodes.
-  SearchOptions fixed = quickSearch(Method::Greedy, 1);
-  fixed.objective.starts = 2;
-  auto opt = Optimizer::create(fixed, start);
-  EXPECT_EQ(opt->score(start, 0).total, opt->score(start, 5).total);
-}
-
 TEST(OptimizeSearch, AShortSearchImprovesADetunedGait) {
   // The detuned biped falls early. Eight greedy generations must find something better.
   const gait::GaitParams start = detunedBiped();

@@ -617,12 +617,14 @@ const char* gl_opt_best_json(void* h) {
   using namespace gaitlab;
   const optimize::Optimizer& o = *opt(h)->optimizer;
   const optimize::ObjectiveTerms& t = o.bestTerms();
+  nlohmann::json terms = nlohmann::json::object();
+  for (const optimize::TermName& term : optimize::kTermNames) terms[term.name] = t.*term.member;
   const nlohmann::json meta = {
       {"source", "gaitlab optimize (gl_opt)"},
       {"method", optimize::methodName(o.options().method)},
       {"seed", o.options().seed},
       {"objective", o.bestObjective()},
-      {"objective_terms", {{"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"ft", t.ft}, {"ff", t.ff}, {"fk", t.fk}, {"fs", t.fs}, {"fp", t.fp}, {"fo", t.fo}, {"fall", t.fall}}},
+      {"objective_terms", terms},
       {"generations", o.generation()},
       {"evaluations", o.evaluations()}};
   opt(h)->text = gait::gaitFileJson(opt(h)->character, o.gaitWith(o.best()), o.generation() ? meta : nlohmann::json::object());

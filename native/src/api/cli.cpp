@@ -475,8 +475,9 @@ std::string utcNow() {
 }
 
 json termsJson(const optimize::ObjectiveTerms& t) {
-  return {{"total", t.total}, {"fd", t.fd}, {"fv", t.fv}, {"fa", t.fa}, {"fr", t.fr}, {"ft", t.ft}, {"ff", t.ff},
-          {"fk", t.fk}, {"fs", t.fs}, {"fp", t.fp}, {"fo", t.fo}, {"fall", t.fall}, {"fell", t.fell}, {"seconds", t.seconds}};
+  json j = {{"total", t.total}, {"fell", t.fell}, {"seconds", t.seconds}};
+  for (const optimize::TermName& term : optimize::kTermNames) j[term.name] = t.*term.member;
+  return j;
 }
 
 int optimizeCommand(int argc, char** argv) {

@@ -334,13 +334,10 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   int episodes = 0;
   // Every episode, walking or box-hit, counts once in the mean (a box-hit episode's walking
   // terms are 0).
-  // The terms averaged over the episodes (the simulated seconds are summed).
-  static constexpr double ObjectiveTerms::*kAveraged[] = {
-      &ObjectiveTerms::fd, &ObjectiveTerms::fv, &ObjectiveTerms::fa, &ObjectiveTerms::fr, &ObjectiveTerms::ft,
-      &ObjectiveTerms::ff, &ObjectiveTerms::fk, &ObjectiveTerms::fs, &ObjectiveTerms::fp, &ObjectiveTerms::fo, &ObjectiveTerms::fall,
-      &ObjectiveTerms::total};
+  // The terms and the total are averaged over the episodes (the simulated seconds are summed).
   const auto add = [&](const ObjectiveTerms& t) {
-    for (double ObjectiveTerms::*term : kAveraged) mean.*term += t.*term;
+    for (const TermName& term : kTermNames) mean.*term.member += t.*term.member;
+    mean.total += t.total;
     mean.seconds += t.seconds;
     mean.fell = mean.fell || t.fell;
     ++episodes;
@@ -378,7 +375,8 @@ ObjectiveTerms evaluate(gait::Character c, const gait::Gait& gait,
   for (double speed : settings.speeds)
     for (int k = 0; k < settings.boxHits; ++k) add(runBoxHitEpisode(c, gait, settings, speed, k, seed, body));
   if (episodes) {
-    for (double ObjectiveTerms::*term : kAveraged) mean.*term /= episodes;
+    for (const TermName& term : kTermNames) mean.*term.member /= episodes;
+    mean.total /= episodes;
   }
   return mean;
 }

@@ -226,6 +226,18 @@ struct ObjectiveTerms {
   double seconds = 0;     // simulated
 };
 
+// The terms and the fall penalty by the names the CLI's and the C ABI's JSON give them: one list,
+// so that the mean over episodes and both reports cannot leave a term out.
+struct TermName {
+  const char* name;
+  double ObjectiveTerms::*member;
+};
+inline constexpr TermName kTermNames[] = {
+    {"fd", &ObjectiveTerms::fd}, {"fv", &ObjectiveTerms::fv}, {"fa", &ObjectiveTerms::fa},
+    {"fr", &ObjectiveTerms::fr}, {"ft", &ObjectiveTerms::ft}, {"ff", &ObjectiveTerms::ff},
+    {"fk", &ObjectiveTerms::fk}, {"fs", &ObjectiveTerms::fs}, {"fp", &ObjectiveTerms::fp},
+    {"fo", &ObjectiveTerms::fo}, {"fall", &ObjectiveTerms::fall}};
+
 // What the recorder sees of one leg frame after a step.
 struct LegFrameSample {
   Eigen::Vector3d position;   // world, m

@@ -117,8 +117,8 @@ const fmt = (x: number) => (x === 0 ? '0' : Math.abs(x) >= 1000 || Math.abs(x) <
 /** The chart's line, and the learner's ring in the scene (main.ts): one colour for one idea. */
 export const LEARNER_COLOUR = '#7b4fd6';
 
-// The objective's terms as the C ABI reports them (optimize/objective.h), with their names in
-// the thesis's notation and whether the line always shows them.
+/** The objective's terms as the C ABI reports them (optimize/objective.h's kTermNames), with their
+ *  names in the thesis's notation and whether the line always shows them. */
 const OBJECTIVE_TERMS: [key: string, name: string, always: boolean][] = [
   ['fd', 'f_d', true], ['fv', 'f_v', true], ['fa', 'f_a', true], ['fr', 'f_r', true],
   ['ft', 'f_t', false], ['ff', 'f_f', false], ['fk', 'f_k', false], ['fs', 'f_s', false],
